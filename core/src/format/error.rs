@@ -1,0 +1,142 @@
+//! Why bytes could not be read as a cloud or a surrogate: every message names the
+//! problem and, where there is one, the line or byte offset it was found at.
+
+use thiserror::Error;
+
+/// A parse or validation failure of one of the formats in [`crate::format`].
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum FormatError {
+    // --- PLY -------------------------------------------------------------------
+    #[error("not a PLY file: it must start with the line 'ply'")]
+    PlyMissingMagic,
+    #[error("PLY header line {line}: unknown format '{found}' (expected ascii, binary_little_endian or binary_big_endian)")]
+    PlyUnknownFormat { line: usize, found: String },
+    #[error("PLY header line {line} is malformed: {reason}")]
+    PlyMalformedHeader { line: usize, reason: String },
+    #[error("PLY header has no 'format' line")]
+    PlyMissingFormat,
+    #[error("PLY header never ends: no 'end_header' line")]
+    PlyMissingEndHeader,
+    #[error("PLY file has no 'vertex' element")]
+    PlyNoVertexElement,
+    #[error("PLY vertex element has no '{axis}' property")]
+    PlyMissingCoordinate { axis: char },
+    #[error("PLY header line {line}: unsupported property type '{name}'")]
+    PlyUnsupportedType { line: usize, name: String },
+    #[error("PLY body is truncated: expected {expected} vertices, got {got} (reading stopped at byte offset {offset})")]
+    PlyTruncatedBody {
+        expected: usize,
+        got: usize,
+        offset: usize,
+    },
+    #[error("PLY body line {line}: '{token}' is not a number")]
+    PlyBadAsciiNumber { line: usize, token: String },
+    #[error("PLY element '{element}' record {record}: invalid list length {length}")]
+    PlyBadListLength {
+        element: String,
+        record: usize,
+        length: f64,
+    },
+    #[error("PLY body line {line}: {reason}")]
+    PlyBadAsciiRecord { line: usize, reason: String },
+
+    // --- XYZ / CSV ---------------------------------------------------------------
+    #[error("line {line}: {reason}")]
+    XyzBadLine { line: usize, reason: String },
+    #[error("the file holds no points")]
+    NoPoints,
+
+    // --- surrogate files ---------------------------------------------------------
+    #[error("surrogate JSON is malformed: {0}")]
+    SurrogateJson(String),
+    #[error("not a shroud surrogate: format tag is '{found}', expected 'shroud-surrogate'")]
+    WrongFormatTag { found: String },
+    #[error("unsupported surrogate format version {found} (this build reads version {supported})")]
+    UnsupportedVersion { found: u64, supported: u32 },
+    #[error("not a binary shroud surrogate: the file does not start with SHRDSURR")]
+    BadMagic,
+    #[error("binary surrogate is truncated: {what} needs {needed} bytes at offset {offset}, only {available} remain")]
+    Truncated {
+        what: &'static str,
+        offset: usize,
+        needed: u64,
+        available: usize,
+    },
+    #[error("binary surrogate has {count} unexpected bytes after the checksum")]
+    TrailingBytes { count: usize },
+    #[error("binary surrogate checksum mismatch: stored {stored:#010x}, computed {computed:#010x} (the file is corrupted)")]
+    ChecksumMismatch { stored: u32, computed: u32 },
+    #[error("binary surrogate field {what} at offset {offset} has invalid value {value}")]
+    BadField {
+        what: &'static str,
+        offset: usize,
+        value: u64,
+    },
+    #[error("invalid surrogate: {0}")]
+    InvalidSurrogate(#[from] SurrogateDefect),
+}
+
+/// A structurally readable surrogate that breaks an invariant every published
+/// surrogate holds (see `FORMATS.md`).
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SurrogateDefect {
+    #[error("it has neither an upper nor a lower surface")]
+    NoSurface,
+    #[error("the grid {cols} x {rows} is outside 2 ..= {max} control points per side")]
+    GridSize {
+        cols: usize,
+        rows: usize,
+        max: usize,
+    },
+    #[error("domain {field} is {value}, must be finite{positive}", positive = if *.must_be_positive { " and > 0" } else { "" })]
+    Domain {
+        field: &'static str,
+        value: f64,
+        must_be_positive: bool,
+    },
+    #[error("frame axis {axis} is {reason}")]
+    Frame {
+        axis: &'static str,
+        reason: &'static str,
+    },
+    #[error(
+        "trim mask has {cells_s} x {cells_t} cells, the grid needs {expected_s} x {expected_t}"
+    )]
+    TrimShape {
+        cells_s: usize,
+        cells_t: usize,
+        expected_s: usize,
+        expected_t: usize,
+    },
+    #[error("trim mask has {got} cell bytes, expected {expected}")]
+    TrimLength { expected: usize, got: usize },
+    #[error("trim cell {cell} has bits {bits:#04x}: only the 4 triangle bits 0x0f may be set")]
+    TrimBits { cell: usize, bits: u8 },
+    #[error("the {slot} slot holds a surface marked {found}")]
+    SideMismatch {
+        slot: &'static str,
+        found: &'static str,
+    },
+    #[error("{side} surface is {cols} x {rows}, the domain is {domain_cols} x {domain_rows}")]
+    SurfaceShape {
+        side: &'static str,
+        cols: usize,
+        rows: usize,
+        domain_cols: usize,
+        domain_rows: usize,
+    },
+    #[error("{side} surface has {got} coefficients, expected cols * rows = {expected}")]
+    CoefficientCount {
+        side: &'static str,
+        expected: usize,
+        got: usize,
+    },
+    #[error("{side} surface coefficient {index} is {value}, must be finite")]
+    NonFiniteCoefficient {
+        side: &'static str,
+        index: usize,
+        value: f64,
+    },
+    #[error("{side} surface certificate {reason}")]
+    Certificate { side: &'static str, reason: String },
+}

@@ -1,0 +1,32 @@
+//! Every file format shroud reads or writes, as pure functions on bytes: point
+//! clouds (PLY, XYZ/CSV/TSV), surrogates (JSON and compact binary, both validated
+//! on read) and triangle meshes (OBJ, PLY) of the trimmed surfaces. The formats
+//! are specified for users in `core/FORMATS.md`.
+
+mod cloud_format;
+mod crc32;
+mod error;
+mod mesh;
+mod ply;
+mod surrogate_binary;
+mod surrogate_json;
+mod tessellate;
+#[cfg(test)]
+mod test_surrogate;
+mod validate;
+mod xyz;
+
+pub use cloud_format::{parse_cloud, CloudFormat};
+pub use crc32::crc32;
+pub use error::{FormatError, SurrogateDefect};
+pub use mesh::TriangleMesh;
+pub use ply::{has_ply_magic, parse_ply, write_ply_points, PlyCloud};
+pub use surrogate_binary::{
+    surrogate_from_binary, surrogate_to_binary, SURROGATE_BINARY_VERSION, SURROGATE_MAGIC,
+};
+pub use surrogate_json::{
+    surrogate_from_json, surrogate_to_json, SURROGATE_FORMAT_TAG, SURROGATE_JSON_VERSION,
+};
+pub use tessellate::{tessellate, tessellate_all};
+pub use validate::validate_surrogate;
+pub use xyz::{parse_xyz, write_xyz};

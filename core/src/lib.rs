@@ -1,0 +1,15 @@
+//! Pure geometry core of shroud: uniform cubic B-splines, safe spline surrogates
+//! (Myles & Peters, "Fast Safe Spline Surrogates for Large Point Clouds"), their
+//! certification, queries, and the file formats. No I/O, no async: every function
+//! here takes values or byte slices and returns values.
+
+pub mod cloud;
+pub mod format;
+pub mod math;
+pub mod query;
+pub mod spline;
+pub mod surrogate;
+pub mod tight;
+
+pub use cloud::{CloudError, PointCloud};
+pub use math::Frame;

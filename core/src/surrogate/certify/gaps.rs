@@ -1,0 +1,175 @@
+//! Gaps `sign * (f(s, t) - w)` of a block of points, evaluated exactly as
+//! `UniformCubicSurface::eval` evaluates `f` (same operations, same order), with
+//! the per-point arithmetic in vectorisable loops.
+
+use super::exact_weights::{basis_weights_fma, needs_division};
+use super::padded::PaddedSurface;
+use super::tiles::TileGrid;
+use crate::spline::basis_weights;
+use crate::surrogate::bins::located::{LocatedBlock, BLOCK};
+use crate::surrogate::model::Locator;
+
+/// Smallest gap a certified point may have. The f64 value of `f` is off by at
+/// most about 20 ulps of `scale`, the largest coefficient of the point's cell
+/// (weights a few ulps off, products, two four-term sums), and the Bézier form
+/// or de Casteljau's order by about as much again; 64 ulps of the scale plus the
+/// height (and one unit, against underflow) leaves room for both, so the point
+/// is on its side in exact arithmetic and in any such order.
+#[inline(always)]
+pub(super) fn rounding_margin(w: f64, scale: f64) -> f64 {
+    64.0 * f64::EPSILON * (1.0 + w.abs() + scale)
+}
+
+/// One block's points, their tiles and gaps.
+pub(super) struct GapBlock {
+    pub located: LocatedBlock,
+    pub tile: [u32; BLOCK],
+    pub gap: [f64; BLOCK],
+    /// Rounding margin of each point (see [`rounding_margin`]).
+    margin: [f64; BLOCK],
+    a: [[f64; BLOCK]; 4],
+    b: [[f64; BLOCK]; 4],
+    first: [u32; BLOCK],
+}
+
+impl Default for GapBlock {
+    fn default() -> Self {
+        Self {
+            located: LocatedBlock::default(),
+            tile: [0; BLOCK],
+            gap: [0.0; BLOCK],
+            margin: [0.0; BLOCK],
+            a: [[0.0; BLOCK]; 4],
+            b: [[0.0; BLOCK]; 4],
+            first: [0; BLOCK],
+        }
+    }
+}
+
+impl GapBlock {
+    /// Locates `points` (at most [`BLOCK`]) and assigns their tiles.
+    #[inline]
+    pub fn locate(&mut self, points: &[[f32; 3]], locator: &Locator, surface: &PaddedSurface, tiles: &TileGrid) {
+        self.located.locate(points, locator, surface.cols, surface.rows);
+        let l = &self.located;
+        for i in 0..BLOCK {
+            self.tile[i] = tiles.tile(l.h[i], l.g[i]) as u32;
+        }
+    }
+
+    /// Basis weights and cell offsets of every located point (they do not depend
+    /// on the coefficients, so one call serves several surfaces of one grid).
+    #[inline]
+    pub fn weigh(&mut self, surface: &PaddedSurface) {
+        let stride = surface.stride as u32;
+        let l = &self.located;
+        for i in 0..BLOCK {
+            let (a, b) = (basis_weights_fma(l.u[i]), basis_weights_fma(l.v[i]));
+            for q in 0..4 {
+                (self.a[q][i], self.b[q][i]) = (a[q], b[q]);
+            }
+            self.first[i] = l.g[i] * stride + l.h[i];
+        }
+        if (0..BLOCK).fold(false, |any, i| any | needs_division(l.u[i]) | needs_division(l.v[i])) {
+            self.divide_tiny_parameters();
+        }
+    }
+
+    /// Gaps of every weighed point to `surface`.
+    #[inline]
+    pub fn measure(&mut self, surface: &PaddedSurface, sign: f64) {
+        let l = &self.located;
+        for i in 0..l.len {
+            let a = [self.a[0][i], self.a[1][i], self.a[2][i], self.a[3][i]];
+            let b = [self.b[0][i], self.b[1][i], self.b[2][i], self.b[3][i]];
+            self.gap[i] = sign * (surface.eval_in_cell(self.first[i] as usize, &a, &b) - l.w[i]);
+        }
+        for i in 0..BLOCK {
+            let scale = surface.scale.get(self.first[i] as usize).copied().unwrap_or(f64::INFINITY);
+            self.margin[i] = rounding_margin(l.w[i], scale);
+        }
+    }
+
+    /// The rare parameters within `1e-90` of a knot take the weights with the
+    /// divisions (see `exact_weights`).
+    #[cold]
+    fn divide_tiny_parameters(&mut self) {
+        let l = &self.located;
+        for i in 0..BLOCK {
+            if needs_division(l.u[i]) || needs_division(l.v[i]) {
+                let (a, b) = (basis_weights(l.u[i]), basis_weights(l.v[i]));
+                for q in 0..4 {
+                    (self.a[q][i], self.b[q][i]) = (a[q], b[q]);
+                }
+            }
+        }
+    }
+
+    /// Calls `wrong(i, excess)` for every point closer than its rounding margin
+    /// (or on the wrong side, or not comparable at all).
+    #[inline]
+    pub fn for_each_wrong(&self, mut wrong: impl FnMut(usize, f64)) {
+        let n = self.located.len;
+        let short = |i: usize| !(self.gap[i] >= self.margin[i]);
+        if (0..n).fold(false, |any, i| any | short(i)) {
+            for i in (0..n).filter(|&i| short(i)) {
+                wrong(i, self.margin[i] - self.gap[i]);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Frame;
+    use crate::spline::UniformCubicSurface;
+    use crate::surrogate::model::Domain;
+    use glam::DVec3;
+
+    #[test]
+    fn block_gaps_are_bit_identical_to_surface_eval() {
+        let frame = Frame::from_direction(DVec3::new(0.2, 0.1, -1.0)).unwrap();
+        let domain = Domain { u_min: -2.0, v_min: -1.5, u_step: 0.21, v_step: 0.17, cols: 20, rows: 19 };
+        let coefficients: Vec<f64> = (0..20 * 19).map(|i| ((i * 7919) % 101) as f64 * 0.013 - 0.4).collect();
+        let surface = UniformCubicSurface::new(20, 19, coefficients).unwrap();
+        let padded = PaddedSurface::new(&surface);
+        let locator = domain.locator(&frame);
+        let tiles = TileGrid::new(19, 18, 1000, 1);
+        // Points inside, on the edges and outside the domain (clamped parameters).
+        let points: Vec<[f32; 3]> = (0..1000)
+            .map(|i| {
+                let x = (i as f32 * 0.37).sin() * 2.5 + 0.5;
+                let y = (i as f32 * 0.91).cos() * 2.0 + 0.2;
+                [x, y, 0.3 * x - 0.2 * y]
+            })
+            .chain([[-2.0, -1.5, 0.0], [2.0, 1.6, 0.1]])
+            .collect();
+        let mut block = GapBlock::default();
+        for (c, chunk) in points.chunks(BLOCK).enumerate() {
+            for sign in [1.0, -1.0] {
+                block.locate(chunk, &locator, &padded, &tiles);
+                block.weigh(&padded);
+                block.measure(&padded, sign);
+                for (i, p) in chunk.iter().enumerate() {
+                    let (s, t, w) = locator.locate_f32(p);
+                    let expected = sign * (surface.eval(s, t) - w);
+                    assert_eq!(block.gap[i].to_bits(), expected.to_bits(), "point {}", c * BLOCK + i);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn wrong_points_include_the_rounding_band_and_nan() {
+        let mut block = GapBlock::default();
+        block.located.len = 4;
+        block.located.w[..4].copy_from_slice(&[1.0, 1.0, 1.0, 1.0]);
+        block.margin[..4].copy_from_slice(&[rounding_margin(1.0, 2.0); 4]);
+        block.gap[..4].copy_from_slice(&[1.0, 1e-15, -0.5, f64::NAN]);
+        let mut wrong = Vec::new();
+        block.for_each_wrong(|i, excess| wrong.push((i, excess)));
+        assert_eq!(wrong.iter().map(|w| w.0).collect::<Vec<_>>(), vec![1, 2, 3]);
+        assert!(wrong[1].1 > 0.5 && wrong[2].1.is_nan());
+    }
+}

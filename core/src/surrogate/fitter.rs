@@ -1,0 +1,200 @@
+//! The surface surrogate fitter: one streaming pass, the Section 6 reduction on the
+//! candidates, optional symmetrisation and tightening, sandwich un-crossing, and
+//! certification of every point.
+
+use super::bins::bin_points;
+use super::candidates::candidates_of;
+use super::certify::{certify_surface, secure_points};
+use super::error::FitError;
+use super::footprint::domain_of_cloud;
+use super::model::{SafeSurface, Side, Sides, Surrogate};
+use super::reduction::{fit_by_reduction, Orientation, ReductionWarmStart};
+use super::scattered_curve::DEFAULT_MAX_SOLVES;
+use super::stats::FitStats;
+use super::tighten::lower_onto_candidates;
+use super::trim::TrimMask;
+use super::uncross::uncross;
+use crate::math::Frame;
+use crate::spline::UniformCubicSurface;
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// Largest grid side accepted (a guard against absurd allocations from input).
+pub const MAX_GRID: usize = 1024;
+
+/// How hard to push the surface onto the cloud.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Tightness {
+    /// The paper's heuristic alone.
+    Plain,
+    /// The heuristic followed by the coordinate-descent lowering pass (default).
+    Lowered,
+    /// The optimum of the linear program over the candidates (`--tight`).
+    Optimal,
+}
+
+/// Everything a fit needs besides the points.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FitOptions {
+    /// Control points along `u` (s) and `v` (t).
+    pub cols: usize,
+    pub rows: usize,
+    /// The viewing direction; need not be unit length.
+    pub direction: [f64; 3],
+    pub sides: Sides,
+    /// Average the u-first and v-first reductions (still safe).
+    pub symmetrize: bool,
+    /// Trim cells (triangles) without data.
+    pub trim: bool,
+    pub tightness: Tightness,
+    /// Sub-cells per cell along each parameter in the streaming pass.
+    pub sub_cells: usize,
+    /// Solve budget of Heuristic(σ, b, λ) per line.
+    pub max_solves: usize,
+    /// Coordinate-descent sweeps of the lowering pass.
+    pub sweeps: usize,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        Self {
+            cols: 20,
+            rows: 20,
+            direction: [0.0, 0.0, -1.0],
+            sides: Sides::Upper,
+            symmetrize: false,
+            trim: true,
+            tightness: Tightness::Lowered,
+            sub_cells: 4,
+            max_solves: DEFAULT_MAX_SOLVES,
+            sweeps: 4,
+        }
+    }
+}
+
+/// A fitter that keeps warm-start state between frames of an evolving cloud.
+#[derive(Debug, Clone)]
+pub struct SurrogateFitter {
+    options: FitOptions,
+    frame: Frame,
+    /// Per side (upper, lower) and orientation (along s, along t).
+    warm: [[ReductionWarmStart; 2]; 2],
+    frames: u64,
+}
+
+/// Fits a surrogate from scratch (no warm start).
+pub fn fit_surrogate(points: &[[f32; 3]], options: &FitOptions) -> Result<Surrogate, FitError> {
+    SurrogateFitter::new(options.clone())?.fit(points)
+}
+
+impl SurrogateFitter {
+    pub fn new(options: FitOptions) -> Result<Self, FitError> {
+        let (cols, rows) = (options.cols, options.rows);
+        if cols < 2 || rows < 2 {
+            return Err(FitError::GridTooSmall { cols, rows });
+        }
+        if cols > MAX_GRID || rows > MAX_GRID {
+            return Err(FitError::GridTooLarge { cols, rows, max: MAX_GRID });
+        }
+        let frame = Frame::from_direction(DVec3::from_array(options.direction))?;
+        Ok(Self { options, frame, warm: Default::default(), frames: 0 })
+    }
+
+    pub fn options(&self) -> &FitOptions {
+        &self.options
+    }
+
+    pub fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
+    /// Forgets the previous frame (the next fit starts cold).
+    pub fn reset_warm_start(&mut self) {
+        self.warm = Default::default();
+        self.frames = 0;
+    }
+
+    /// Fits and certifies a surrogate of `points`, warm-started from the last fit.
+    pub fn fit(&mut self, points: &[[f32; 3]]) -> Result<Surrogate, FitError> {
+        let o = self.options.clone();
+        let frame = self.frame;
+        let domain = domain_of_cloud(points, &frame, o.cols, o.rows)?;
+        let sides = o.sides.list();
+        let sub = o.sub_cells.clamp(1, MAX_SUB_CELLS);
+        let check = check_factor(points.len(), (o.cols - 1) * (o.rows - 1), sub);
+        let binning = bin_points(points, &frame, &domain, sides, sub * check);
+        let trim = if o.trim { binning.trim.clone() } else { TrimMask::full(o.cols - 1, o.rows - 1) };
+        let locator = domain.locator(&frame);
+        let param_of = |i: u32| {
+            let (s, t, _) = locator.locate_f32(&points[i as usize]);
+            (s, t)
+        };
+        let mut stats = FitStats { points: points.len() as u64, warm_started: self.frames > 0, ..Default::default() };
+        let mut surfaces = Vec::with_capacity(2);
+        for (fine, &side) in binning.maxima.iter().zip(sides) {
+            let coarse = (check > 1).then(|| fine.coarsen(check));
+            let maxima = coarse.as_ref().unwrap_or(fine);
+            let warm = &mut self.warm[side_index(side)];
+            let mut coefficients =
+                fit_by_reduction(maxima, Orientation::AlongS, &param_of, &mut warm[0], o.max_solves, &mut stats)?;
+            if o.symmetrize {
+                let other =
+                    fit_by_reduction(maxima, Orientation::AlongT, &param_of, &mut warm[1], o.max_solves, &mut stats)?;
+                coefficients.iter_mut().zip(&other).for_each(|(a, b)| *a = 0.5 * (*a + b));
+            }
+            let mut surface = UniformCubicSurface::new(o.cols, o.rows, coefficients).ok_or(FitError::NoSamples)?;
+            let candidates = candidates_of(maxima, &param_of);
+            stats.tightening_moves += match o.tightness {
+                Tightness::Plain => 0,
+                Tightness::Lowered => lower_onto_candidates(&mut surface, &candidates, &trim, sub, o.sweeps),
+                Tightness::Optimal => crate::tight::lower_to_optimum(&mut surface, &candidates, &trim, sub),
+            };
+            // Back from the upper sense to real heights.
+            surface.coefficients.iter_mut().for_each(|c| *c *= side.sign());
+            surfaces.push((side, surface));
+        }
+        if let [(Side::Upper, up), (Side::Lower, low)] = surfaces.as_mut_slice() {
+            stats.uncrossed_coefficients = uncross(up, low, &trim);
+        }
+        let mut result = Surrogate { frame, domain, trim, upper: None, lower: None, stats };
+        for ((side, mut surface), fine) in surfaces.into_iter().zip(&binning.maxima) {
+            // The sub-cell maxima first (a few thousand points): what they catch,
+            // certification does not have to correct with another look at the cloud.
+            let check_points: Vec<u32> = fine.occupied().map(|(_, _, index)| index).collect();
+            let secured = secure_points(points, &check_points, &frame, &domain, &mut surface, side)?;
+            let mut certificate = certify_surface(points, &frame, &domain, &mut surface, side)?;
+            certificate.corrected_points += secured;
+            let safe = SafeSurface { side, surface, certificate };
+            match side {
+                Side::Upper => result.upper = Some(safe),
+                Side::Lower => result.lower = Some(safe),
+            }
+        }
+        self.frames += 1;
+        Ok(result)
+    }
+}
+
+/// Sub-cells per cell along each parameter at most: more would only cost memory
+/// (the candidates already are nearly every point) and could overflow the slots.
+const MAX_SUB_CELLS: usize = 16;
+
+/// How much finer than the candidates' sub-cells the check points' sub-cells are:
+/// twice (each candidate sub-cell split in four) while that still leaves about a
+/// point per check sub-cell, else the candidates themselves. A power of two, so
+/// the candidates follow from the check points exactly (`SubCellMaxima::coarsen`).
+fn check_factor(points: usize, cells: usize, sub: usize) -> usize {
+    if cells * (2 * sub) * (2 * sub) <= points {
+        2
+    } else {
+        1
+    }
+}
+
+fn side_index(side: Side) -> usize {
+    match side {
+        Side::Upper => 0,
+        Side::Lower => 1,
+    }
+}

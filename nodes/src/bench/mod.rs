@@ -1,0 +1,39 @@
+//! `shroud bench`: reproduces the timing tables of paper 000 on the paper's own
+//! scene and prints them beside the paper's numbers (markdown, for the README).
+
+mod alloc;
+mod paper000;
+mod timing;
+
+pub use alloc::{live_bytes, peak_bytes, reset_peak, CountingAllocator};
+pub use timing::{median, timed};
+
+use anyhow::Result;
+use clap::{Args, ValueEnum};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Suite {
+    /// Tables 1 and 2, the Figure 9 histograms and the Section 3 baseline.
+    Surrogate,
+}
+
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    #[arg(value_enum, default_value = "surrogate")]
+    pub suite: Suite,
+    /// Cloud configurations per table entry (the paper used 10).
+    #[arg(long, default_value_t = 10)]
+    pub configs: usize,
+    /// Fits per configuration (the paper used 20).
+    #[arg(long, default_value_t = 20)]
+    pub runs: usize,
+    /// A fast smoke run: 2 configurations x 3 fits, small clouds only.
+    #[arg(long)]
+    pub quick: bool,
+}
+
+pub fn run(args: BenchArgs) -> Result<()> {
+    match args.suite {
+        Suite::Surrogate => paper000::run(&args),
+    }
+}

@@ -1,0 +1,197 @@
+//! Paper 000 (Myles & Peters), Section 7: Table 1 (time vs N at 20 x 20), Table 2
+//! (time vs n at N = 30K), Figure 9 (iterations per line), and the Section 3
+//! trial-and-error baseline against Heuristic(σ, b, λ).
+
+use super::{alloc, median, timed, BenchArgs};
+use anyhow::Result;
+use shroud_core::surrogate::{
+    fit_curve_above, fit_curve_by_trial_and_error, FitOptions, Histogram, SurrogateFitter, Tightness,
+};
+use shroud_sim::MovingSpheres;
+
+/// Table 1 of the paper: milliseconds on a 2.4 GHz Pentium 4, 20 x 20.
+const TABLE1: [(usize, f64); 5] = [(10_000, 14.5), (30_000, 42.5), (50_000, 71.0), (100_000, 141.0), (300_000, 445.0)];
+/// Table 2 of the paper: milliseconds for N = 30K and an n x n spline.
+const TABLE2: [(usize, f64); 6] = [(10, 42.5), (20, 42.5), (30, 45.0), (40, 51.0), (50, 55.5), (60, 64.5)];
+
+/// One configuration of the paper's scene: seed and time both vary.
+fn cloud(points: usize, config: usize) -> Result<Vec<[f32; 3]>> {
+    let scene = MovingSpheres { points, seed: 1000 + config as u64, ..Default::default() };
+    Ok(scene.generate(0.37 * config as f64)?)
+}
+
+struct Timings {
+    default_ms: f64,
+    plain_ms: f64,
+    tight_ms: f64,
+    warm_ms: f64,
+    extra_bytes: usize,
+}
+
+/// Median cold-fit times over `configs x runs` fits, plus a warm-started stream.
+fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
+    let (configs, runs) = if args.quick { (2, 3) } else { (args.configs.max(1), args.runs.max(1)) };
+    let options = |tightness| FitOptions { cols: grid, rows: grid, tightness, ..Default::default() };
+    let (mut default, mut plain, mut tight, mut warm) = (vec![], vec![], vec![], vec![]);
+    let mut extra_bytes = 0;
+    for config in 0..configs {
+        let pts = cloud(points, config)?;
+        for (tightness, out) in [(Tightness::Lowered, &mut default), (Tightness::Plain, &mut plain)] {
+            for _ in 0..runs {
+                let mut fitter = SurrogateFitter::new(options(tightness))?;
+                let before = alloc::live_bytes();
+                alloc::reset_peak();
+                let (fit, ms) = timed(|| fitter.fit(&pts));
+                extra_bytes = extra_bytes.max(alloc::peak_bytes().saturating_sub(before));
+                certified(&fit?)?;
+                out.push(ms);
+            }
+        }
+        for _ in 0..runs.min(5) {
+            let mut fitter = SurrogateFitter::new(options(Tightness::Optimal))?;
+            let (fit, ms) = timed(|| fitter.fit(&pts));
+            certified(&fit?)?;
+            tight.push(ms);
+        }
+        warm.extend(warm_stream(points, grid, config, runs)?);
+    }
+    Ok(Timings {
+        default_ms: median(&mut default),
+        plain_ms: median(&mut plain),
+        tight_ms: median(&mut tight),
+        warm_ms: median(&mut warm),
+        extra_bytes,
+    })
+}
+
+/// A 30 Hz stream of frames fitted by one warm-started fitter.
+fn warm_stream(points: usize, grid: usize, config: usize, frames: usize) -> Result<Vec<f64>> {
+    let scene = MovingSpheres { points, seed: 1000 + config as u64, ..Default::default() };
+    let mut fitter = SurrogateFitter::new(FitOptions { cols: grid, rows: grid, ..Default::default() })?;
+    let mut times = Vec::with_capacity(frames);
+    for frame in 0..=frames {
+        let pts = scene.generate(0.37 * config as f64 + frame as f64 / 30.0)?;
+        let (fit, ms) = timed(|| fitter.fit(&pts));
+        certified(&fit?)?;
+        if frame > 0 {
+            times.push(ms);
+        }
+    }
+    Ok(times)
+}
+
+fn certified(s: &shroud_core::surrogate::Surrogate) -> Result<()> {
+    for surface in s.surfaces() {
+        anyhow::ensure!(surface.certificate.violations == 0, "uncertified surrogate in the benchmark");
+    }
+    Ok(())
+}
+
+pub fn run(args: &BenchArgs) -> Result<()> {
+    let threads = rayon::current_num_threads();
+    println!("# shroud bench surrogate ({threads} threads; medians of cold fits unless noted)\n");
+    table1(args)?;
+    table2(args)?;
+    figure9(args)?;
+    baseline(args)?;
+    Ok(())
+}
+
+fn table1(args: &BenchArgs) -> Result<()> {
+    println!("## Table 1: time vs N, 20 x 20, certification included\n");
+    println!("| N | paper (ms, P4 2.4 GHz) | shroud default (ms) | shroud --plain (ms) | shroud --tight (ms) | warm stream (ms) | points/s (default) | speed-up vs paper | extra memory / cloud |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for (n, paper) in TABLE1 {
+        if args.quick && n > 30_000 {
+            continue;
+        }
+        let t = measure(n, 20, args)?;
+        let cloud_bytes = n * 12;
+        println!(
+            "| {}K | {paper} | {:.2} | {:.2} | {:.2} | {:.2} | {:.0}M | {:.0}x | {:.2} |",
+            n / 1000,
+            t.default_ms,
+            t.plain_ms,
+            t.tight_ms,
+            t.warm_ms,
+            n as f64 / t.default_ms / 1e3,
+            paper / t.default_ms,
+            t.extra_bytes as f64 / cloud_bytes as f64
+        );
+    }
+    println!();
+    Ok(())
+}
+
+fn table2(args: &BenchArgs) -> Result<()> {
+    println!("## Table 2: time vs grid n x n, N = 30K\n");
+    println!("| n | paper (ms) | shroud default (ms) | shroud --plain (ms) | shroud --tight (ms) | warm stream (ms) |");
+    println!("|---:|---:|---:|---:|---:|---:|");
+    for (n, paper) in TABLE2 {
+        if args.quick && n > 20 {
+            continue;
+        }
+        let t = measure(30_000, n, args)?;
+        println!("| {n} | {paper} | {:.2} | {:.2} | {:.2} | {:.2} |", t.default_ms, t.plain_ms, t.tight_ms, t.warm_ms);
+    }
+    println!();
+    Ok(())
+}
+
+/// Figure 9: total solves of Heuristic(σ, b, λ) per line, N = 30K and 300K, 20 x 20.
+fn figure9(args: &BenchArgs) -> Result<()> {
+    println!("## Figure 9: solves (LDL decompositions) of Heuristic(σ, b, λ) per line, 20 x 20\n");
+    println!("| N | cold: histogram (solves: lines) | cold mean | warm mean | max |");
+    println!("|---:|---|---:|---:|---:|");
+    let sizes: &[usize] = if args.quick { &[30_000] } else { &[30_000, 300_000] };
+    for &n in sizes {
+        let (mut cold, mut warm) = (Histogram::default(), Histogram::default());
+        let configs = if args.quick { 2 } else { args.configs.max(1) };
+        for config in 0..configs {
+            let scene = MovingSpheres { points: n, seed: 1000 + config as u64, ..Default::default() };
+            let mut streaming = SurrogateFitter::new(FitOptions::default())?;
+            for frame in 0..10 {
+                let pts = scene.generate(0.37 * config as f64 + frame as f64 / 30.0)?;
+                let fresh = SurrogateFitter::new(FitOptions::default())?.fit(&pts)?;
+                cold.merge(&fresh.stats.curve_solves);
+                let s = streaming.fit(&pts)?;
+                if frame > 0 {
+                    warm.merge(&s.stats.curve_solves);
+                }
+            }
+        }
+        let bars: Vec<String> =
+            cold.counts.iter().enumerate().filter(|(_, c)| **c > 0).map(|(v, c)| format!("{v}: {c}")).collect();
+        println!("| {}K | {} | {:.2} | {:.2} | {} |", n / 1000, bars.join(", "), cold.mean(), warm.mean(), cold.max().max(warm.max()));
+    }
+    println!();
+    Ok(())
+}
+
+/// Section 3 vs Section 5 on curve data: slices of the moving spheres seen from
+/// the side (x as parameter, z as value), n = 20.
+fn baseline(args: &BenchArgs) -> Result<()> {
+    println!("## Section 3 trial-and-error vs Section 5 Heuristic(σ, b, λ), curves, n = 20\n");
+    let clouds = if args.quick { 20 } else { 200 };
+    let (mut te_ms, mut h_ms, mut te_solves, mut h_solves) = (vec![], vec![], vec![], vec![]);
+    let mut converged = 0;
+    for config in 0..clouds {
+        let pts = cloud(2_000, config)?;
+        let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[0] as f64), b.max(p[0] as f64)));
+        let samples: Vec<(f64, f64)> = pts.iter().map(|p| ((p[0] as f64 - lo) / (hi - lo) * 19.0, p[2] as f64)).collect();
+        let (te, ms) = timed(|| fit_curve_by_trial_and_error(&samples, 20, 200));
+        let te = te?;
+        te_ms.push(ms);
+        te_solves.push(te.solves as f64);
+        converged += usize::from(te.converged);
+        let (h, ms) = timed(|| fit_curve_above(&samples, 20));
+        h_ms.push(ms);
+        h_solves.push(h?.solves as f64);
+    }
+    println!("| method | converged (safe) | median solves | median time (ms) |");
+    println!("|---|---:|---:|---:|");
+    println!("| Section 3 trial-and-error | {converged} / {clouds} | {:.0} | {:.3} |", median(&mut te_solves), median(&mut te_ms));
+    println!("| Section 5 Heuristic(σ, b, λ) | {clouds} / {clouds} | {:.0} | {:.3} |", median(&mut h_solves), median(&mut h_ms));
+    println!();
+    Ok(())
+}
