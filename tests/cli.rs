@@ -4,11 +4,17 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn shroud(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shroud")).args(args).output().expect("the shroud binary runs")
+    Command::new(env!("CARGO_BIN_EXE_shroud"))
+        .args(args)
+        .output()
+        .expect("the shroud binary runs")
 }
 
 fn text(out: &Output) -> (String, String) {
-    (String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+    (
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
 }
 
 fn path(dir: &Path, name: &str) -> PathBuf {
@@ -31,25 +37,55 @@ fn fails_with(out: Output, needle: &str) {
     let (stdout, stderr) = text(&out);
     assert!(!out.status.success(), "unexpected success: {stdout}");
     assert!(!stderr.contains("panicked"), "panic: {stderr}");
-    assert!(stderr.to_lowercase().contains(&needle.to_lowercase()), "expected '{needle}' in: {stderr}");
+    assert!(
+        stderr.to_lowercase().contains(&needle.to_lowercase()),
+        "expected '{needle}' in: {stderr}"
+    );
 }
 
 #[test]
 fn sim_then_fit_prints_a_certificate_and_writes_files() {
     let dir = tempfile::tempdir().unwrap();
     let cloud = path(dir.path(), "cloud.ply");
-    ok(shroud(&["sim", "moving-spheres", "--points", "20000", "--time", "0.5", "-o", s(&cloud)]));
+    ok(shroud(&[
+        "sim",
+        "moving-spheres",
+        "--points",
+        "20000",
+        "--time",
+        "0.5",
+        "-o",
+        s(&cloud),
+    ]));
     for (side, expected) in [("upper", 1), ("lower", 1), ("sandwich", 2)] {
         let out = path(dir.path(), &format!("{side}.json"));
         let mesh = path(dir.path(), &format!("{side}.obj"));
         let stdout = ok(shroud(&[
-            "fit", s(&cloud), "--grid", "20x14", "--dir", "0.2,-0.1,-1", "--side", side, "-o", s(&out), "--mesh", s(&mesh),
+            "fit",
+            s(&cloud),
+            "--grid",
+            "20x14",
+            "--dir",
+            "0.2,-0.1,-1",
+            "--side",
+            side,
+            "-o",
+            s(&out),
+            "--mesh",
+            s(&mesh),
         ]));
-        assert_eq!(stdout.matches("20000 points checked, 0 violations").count(), expected, "{stdout}");
-        let json: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+        assert_eq!(
+            stdout.matches("20000 points checked, 0 violations").count(),
+            expected,
+            "{stdout}"
+        );
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
         assert_eq!(json["format"], "shroud-surrogate");
         let obj = std::fs::read_to_string(&mesh).unwrap();
-        assert!(obj.lines().any(|l| l.starts_with("v ")) && obj.lines().any(|l| l.starts_with("f ")));
+        assert!(
+            obj.lines().any(|l| l.starts_with("v ")) && obj.lines().any(|l| l.starts_with("f "))
+        );
     }
 }
 
@@ -57,16 +93,41 @@ fn sim_then_fit_prints_a_certificate_and_writes_files() {
 fn binary_surrogate_and_xyz_input_and_query() {
     let dir = tempfile::tempdir().unwrap();
     let cloud = path(dir.path(), "terrain.xyz");
-    ok(shroud(&["sim", "terrain", "--points", "5000", "-o", s(&cloud)]));
+    ok(shroud(&[
+        "sim",
+        "terrain",
+        "--points",
+        "5000",
+        "-o",
+        s(&cloud),
+    ]));
     let surrogate = path(dir.path(), "terrain.shrd");
-    ok(shroud(&["fit", s(&cloud), "--side", "sandwich", "--tight", "-o", s(&surrogate)]));
+    ok(shroud(&[
+        "fit",
+        s(&cloud),
+        "--side",
+        "sandwich",
+        "--tight",
+        "-o",
+        s(&surrogate),
+    ]));
     // A point far above the terrain is above the upper surface.
     let stdout = ok(shroud(&["query", s(&surrogate), "--point", "0,0,100"]));
     assert!(stdout.contains("above"), "{stdout}");
     // A ray straight down from above hits the upper surface first.
-    let stdout = ok(shroud(&["query", s(&surrogate), "--ray", "0.5,0.5,50,0,0,-1"]));
+    let stdout = ok(shroud(&[
+        "query",
+        s(&surrogate),
+        "--ray",
+        "0.5,0.5,50,0,0,-1",
+    ]));
     assert!(stdout.contains("hit"), "{stdout}");
-    let stdout = ok(shroud(&["query", s(&surrogate), "--ray", "0.5,0.5,50,0,0,1"]));
+    let stdout = ok(shroud(&[
+        "query",
+        s(&surrogate),
+        "--ray",
+        "0.5,0.5,50,0,0,1",
+    ]));
     assert!(stdout.contains("no hit"), "{stdout}");
 }
 
@@ -79,37 +140,87 @@ fn bad_clouds_get_clear_errors() {
         p
     };
     fails_with(shroud(&["fit", s(&write("empty.xyz", b""))]), "empty");
-    fails_with(shroud(&["fit", s(&write("nan.xyz", b"0 0 0\n1 nan 2\n3 4 5\n"))]), "non-finite");
-    fails_with(shroud(&["fit", s(&write("inf.csv", b"x,y,z\n0,0,0\n1,inf,2\n"))]), "non-finite");
-    fails_with(shroud(&["fit", s(&write("same.xyz", b"1 2 3\n1 2 3\n1 2 3\n"))]), "degenerate");
-    fails_with(shroud(&["fit", s(&write("line.xyz", b"0 0 0\n1 1 1\n2 2 2\n"))]), "degenerate");
-    fails_with(shroud(&["fit", s(&write("words.xyz", b"0 0 0\nhello world\n"))]), "line 2");
+    fails_with(
+        shroud(&["fit", s(&write("nan.xyz", b"0 0 0\n1 nan 2\n3 4 5\n"))]),
+        "non-finite",
+    );
+    fails_with(
+        shroud(&["fit", s(&write("inf.csv", b"x,y,z\n0,0,0\n1,inf,2\n"))]),
+        "non-finite",
+    );
+    fails_with(
+        shroud(&["fit", s(&write("same.xyz", b"1 2 3\n1 2 3\n1 2 3\n"))]),
+        "degenerate",
+    );
+    fails_with(
+        shroud(&["fit", s(&write("line.xyz", b"0 0 0\n1 1 1\n2 2 2\n"))]),
+        "degenerate",
+    );
+    fails_with(
+        shroud(&["fit", s(&write("words.xyz", b"0 0 0\nhello world\n"))]),
+        "line 2",
+    );
     let header = b"ply\nformat binary_little_endian 1.0\nelement vertex 10\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
     let mut truncated = header.to_vec();
     truncated.extend_from_slice(&[0u8; 50]);
-    fails_with(shroud(&["fit", s(&write("cut.ply", &truncated))]), "truncated");
-    fails_with(shroud(&["fit", s(&write("bad.ply", b"ply\nformat nonsense 1.0\nend_header\n"))]), "format");
-    fails_with(shroud(&["fit", s(&path(dir.path(), "missing.ply"))]), "cannot read");
+    fails_with(
+        shroud(&["fit", s(&write("cut.ply", &truncated))]),
+        "truncated",
+    );
+    fails_with(
+        shroud(&[
+            "fit",
+            s(&write("bad.ply", b"ply\nformat nonsense 1.0\nend_header\n")),
+        ]),
+        "format",
+    );
+    fails_with(
+        shroud(&["fit", s(&path(dir.path(), "missing.ply"))]),
+        "cannot read",
+    );
 }
 
 #[test]
 fn bad_options_get_clear_errors() {
     let dir = tempfile::tempdir().unwrap();
     let cloud = path(dir.path(), "c.ply");
-    ok(shroud(&["sim", "table-top", "--points", "2000", "-o", s(&cloud)]));
+    ok(shroud(&[
+        "sim",
+        "table-top",
+        "--points",
+        "2000",
+        "-o",
+        s(&cloud),
+    ]));
     fails_with(shroud(&["fit", s(&cloud), "--dir", "0,0,0"]), "direction");
-    fails_with(shroud(&["fit", s(&cloud), "--dir", "0,0"]), "3 comma-separated");
-    fails_with(shroud(&["fit", s(&cloud), "--grid", "1x5"]), "at least 2 x 2");
+    fails_with(
+        shroud(&["fit", s(&cloud), "--dir", "0,0"]),
+        "3 comma-separated",
+    );
+    fails_with(
+        shroud(&["fit", s(&cloud), "--grid", "1x5"]),
+        "at least 2 x 2",
+    );
     fails_with(shroud(&["fit", s(&cloud), "--grid", "twenty"]), "grid");
     fails_with(shroud(&["sim", "volcano", "-o", s(&cloud)]), "volcano");
-    fails_with(shroud(&["sim", "terrain", "--points", "0", "-o", s(&cloud)]), "points");
+    fails_with(
+        shroud(&["sim", "terrain", "--points", "0", "-o", s(&cloud)]),
+        "points",
+    );
 }
 
 #[test]
 fn corrupted_surrogates_are_rejected() {
     let dir = tempfile::tempdir().unwrap();
     let cloud = path(dir.path(), "c.ply");
-    ok(shroud(&["sim", "moving-spheres", "--points", "3000", "-o", s(&cloud)]));
+    ok(shroud(&[
+        "sim",
+        "moving-spheres",
+        "--points",
+        "3000",
+        "-o",
+        s(&cloud),
+    ]));
     let good = path(dir.path(), "s.shrd");
     ok(shroud(&["fit", s(&cloud), "-o", s(&good)]));
     let mut bytes = std::fs::read(&good).unwrap();
@@ -126,7 +237,10 @@ fn corrupted_surrogates_are_rejected() {
 fn bench_quick_prints_the_paper_tables() {
     let stdout = ok(shroud(&["bench", "surrogate", "--quick"]));
     for heading in ["Table 1", "Table 2", "Figure 9", "Section 3"] {
-        assert!(stdout.contains(heading), "{heading} missing from:\n{stdout}");
+        assert!(
+            stdout.contains(heading),
+            "{heading} missing from:\n{stdout}"
+        );
     }
     assert!(stdout.contains("| 10K | 14.5 |"), "{stdout}");
 }

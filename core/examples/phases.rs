@@ -4,7 +4,9 @@
 //! peak heap the fit allocates beyond the input cloud.
 //!
 //! `cargo run --release -p shroud-core --example phases [reps] [points grid]`
-//! (with `points grid`, only that configuration).
+//! (with `points grid`, only that configuration). `MIN=1` reports the best run
+//! instead of the median (steadier on a shared machine), `CPU=1` CPU time summed
+//! over threads instead of wall time, and `RAYON_NUM_THREADS` sets the threads.
 
 use shroud_core::spline::UniformCubicSurface;
 use shroud_core::surrogate::*;
@@ -37,11 +39,17 @@ static ALLOCATOR: PeakAlloc = PeakAlloc;
 /// CPU time of all threads of this process in ns (`/proc/self/task/*/schedstat`),
 /// which a busy machine inflates much less than wall time.
 fn cpu_ns() -> u64 {
-    let Ok(tasks) = std::fs::read_dir("/proc/self/task") else { return 0 };
+    let Ok(tasks) = std::fs::read_dir("/proc/self/task") else {
+        return 0;
+    };
     tasks
         .flatten()
         .filter_map(|task| std::fs::read_to_string(task.path().join("schedstat")).ok())
-        .filter_map(|stat| stat.split_whitespace().next().and_then(|ns| ns.parse::<u64>().ok()))
+        .filter_map(|stat| {
+            stat.split_whitespace()
+                .next()
+                .and_then(|ns| ns.parse::<u64>().ok())
+        })
         .sum()
 }
 
@@ -62,36 +70,67 @@ fn median_ms(reps: usize, mut run: impl FnMut()) -> f64 {
         .collect();
     times.sort_by(|a, b| a.total_cmp(b));
     // `MIN=1`: the best run (robust on a busy machine) instead of the median.
-    times[if std::env::var_os("MIN").is_some() { 0 } else { reps / 2 }]
+    times[if std::env::var_os("MIN").is_some() {
+        0
+    } else {
+        reps / 2
+    }]
 }
 
 struct Row {
     domain: f64,
     bin: f64,
+    bin_fine: f64,
     certify: f64,
     plain: f64,
     lowered: f64,
     corrected: u64,
-    peak_mb: f64,
+    peak_plain: f64,
+    peak_lowered: f64,
+}
+
+/// Heap bytes (MB) `run` allocates beyond what is live when it starts, at most.
+fn peak_mb(run: impl FnOnce()) -> f64 {
+    let before = LIVE.load(Ordering::Relaxed);
+    PEAK.store(before, Ordering::Relaxed);
+    run();
+    (PEAK.load(Ordering::Relaxed) - before) as f64 / 1e6
 }
 
 fn measure(points: usize, grid: usize, reps: usize) -> Row {
-    let pts = shroud_sim::MovingSpheres { points, ..Default::default() }.generate(0.3).expect("scene");
+    let pts = shroud_sim::MovingSpheres {
+        points,
+        ..Default::default()
+    }
+    .generate(0.3)
+    .expect("scene");
     let frame = Frame::from_direction(glam::DVec3::new(0.0, 0.0, -1.0)).expect("frame");
-    let opts = |tightness| FitOptions { cols: grid, rows: grid, tightness, ..Default::default() };
+    let opts = |tightness| FitOptions {
+        cols: grid,
+        rows: grid,
+        tightness,
+        ..Default::default()
+    };
     let domain = domain_of_cloud(&pts, &frame, grid, grid).expect("domain");
     let domain_ms = median_ms(reps, || {
         std::hint::black_box(domain_of_cloud(&pts, &frame, grid, grid).expect("domain"));
     });
-    let bin = median_ms(reps, || {
-        std::hint::black_box(bins::bin_points(&pts, &frame, &domain, &[Side::Upper], std::env::var("SUB").ok().and_then(|s| s.parse().ok()).unwrap_or(4)));
-    });
+    // The candidates' resolution (4 x 4 sub-cells) and the check points' (8 x 8),
+    // which the fit bins at when the cloud fills them.
+    let bin_at = |sub| {
+        median_ms(reps, || {
+            std::hint::black_box(bins::bin_points(&pts, &frame, &domain, &[Side::Upper], sub));
+        })
+    };
+    let (bin, bin_fine) = (bin_at(4), bin_at(8));
     let fitted = fit_surrogate(&pts, &opts(Tightness::Lowered)).expect("fit");
     let upper = fitted.upper.expect("upper surface");
     // A surface that already passes: one certification pass, no correction.
     let certify = median_ms(reps, || {
         let mut surface: UniformCubicSurface = upper.surface.clone();
-        std::hint::black_box(certify_surface(&pts, &frame, &domain, &mut surface, Side::Upper).expect("certify"));
+        std::hint::black_box(
+            certify_surface(&pts, &frame, &domain, &mut surface, Side::Upper).expect("certify"),
+        );
     });
     let fit_ms = |tightness| {
         let mut fitter = SurrogateFitter::new(opts(tightness)).expect("fitter");
@@ -100,50 +139,57 @@ fn measure(points: usize, grid: usize, reps: usize) -> Row {
         })
     };
     let (plain, lowered) = (fit_ms(Tightness::Plain), fit_ms(Tightness::Lowered));
-    let before = LIVE.load(Ordering::Relaxed);
-    PEAK.store(before, Ordering::Relaxed);
-    std::hint::black_box(fit_surrogate(&pts, &opts(Tightness::Lowered)).expect("fit"));
-    let peak_mb = (PEAK.load(Ordering::Relaxed) - before) as f64 / 1e6;
-    if std::env::var("PEAKS").is_ok() {
-        let peak_of = |f: &dyn Fn()| {
-            let before = LIVE.load(Ordering::Relaxed);
-            PEAK.store(before, Ordering::Relaxed);
-            f();
-            (PEAK.load(Ordering::Relaxed) - before) as f64 / 1e6
-        };
-        let b = peak_of(&|| {
-            std::hint::black_box(bins::bin_points(&pts, &frame, &domain, &[Side::Upper], 8));
-        });
-        let c = peak_of(&|| {
-            let mut surface = upper.surface.clone();
-            std::hint::black_box(certify_surface(&pts, &frame, &domain, &mut surface, Side::Upper).expect("certify"));
-        });
-        let f = peak_of(&|| {
-            std::hint::black_box(fit_surrogate(&pts, &opts(Tightness::Plain)).expect("fit"));
-        });
-        let d = peak_of(&|| {
-            std::hint::black_box(domain_of_cloud(&pts, &frame, grid, grid).expect("domain"));
-        });
-        println!("peak MB: bin(8) {b:.2} certify {c:.2} plain fit {f:.2} domain {d:.2}");
+    let peak_of = |tightness| {
+        peak_mb(|| {
+            std::hint::black_box(fit_surrogate(&pts, &opts(tightness)).expect("fit"));
+        })
+    };
+    Row {
+        domain: domain_ms,
+        bin,
+        bin_fine,
+        certify,
+        plain,
+        lowered,
+        corrected: upper.certificate.corrected_points,
+        peak_plain: peak_of(Tightness::Plain),
+        peak_lowered: peak_of(Tightness::Lowered),
     }
-    Row { domain: domain_ms, bin, certify, plain, lowered, corrected: upper.certificate.corrected_points, peak_mb }
 }
 
 fn print(label: &str, r: &Row) {
     println!(
-        "{label:>14} | {:7.2} {:7.2} {:8.2} | {:7.2} {:8.2} | {:9} {:8.2}",
-        r.domain, r.bin, r.certify, r.plain, r.lowered, r.corrected, r.peak_mb
+        "{label:>14} | {:6.2} {:6.2} {:6.2} {:7.2} | {:6.2} {:7.2} | {:9} | {:5.2} {:5.2}",
+        r.domain,
+        r.bin,
+        r.bin_fine,
+        r.certify,
+        r.plain,
+        r.lowered,
+        r.corrected,
+        r.peak_plain,
+        r.peak_lowered
     );
 }
 
 fn main() {
-    let args: Vec<usize> = std::env::args().skip(1).filter_map(|s| s.parse().ok()).collect();
+    let args: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter_map(|s| s.parse().ok())
+        .collect();
     let reps = args.first().copied().unwrap_or(31).max(1);
     let threads = rayon::current_num_threads();
-    println!("median ms over {reps} runs; moving spheres t=0.3, upper side, 4x4 sub-cells, {threads} threads");
+    let statistic = if std::env::var_os("MIN").is_some() {
+        "best"
+    } else {
+        "median"
+    };
+    println!("{statistic} ms of {reps} runs; moving spheres t=0.3, 20x20 unless given, upper side, {threads} threads");
+    println!("phases: domain pass, binning at 4x4 and 8x8 sub-cells, one certification pass (no correction);");
+    println!("fits: whole fit, Plain and Lowered (default); corrected: points the Lowered fit raised; peak heap MB");
     println!(
-        "{:>14} | {:>7} {:>7} {:>8} | {:>7} {:>8} | {:>9} {:>8}",
-        "", "domain", "bin", "certify", "plain", "lowered", "corrected", "peak MB"
+        "{:>14} | {:>6} {:>6} {:>6} {:>7} | {:>6} {:>7} | {:>9} | {:>5} {:>5}",
+        "", "domain", "bin4", "bin8", "certify", "plain", "lowered", "corrected", "peakP", "peakL"
     );
     let configs: Vec<(usize, usize)> = match args[..] {
         [_, n, grid, ..] => vec![(n, grid)],

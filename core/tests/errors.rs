@@ -42,7 +42,7 @@ fn fit_along(points: &[[f32; 3]], direction: [f64; 3]) -> Result<Surrogate, FitE
 
 fn assert_degenerate(result: Result<Surrogate, FitError>, what: &str) {
     match result {
-        Err(e @ FitError::Degenerate { .. }) => {
+        Err(e @ (FitError::Degenerate { .. } | FitError::Collinear { .. })) => {
             assert!(e.to_string().contains("degenerate"), "{what}: message {e}")
         }
         Err(e) => panic!("{what}: expected a degenerate-cloud error, got {e}"),

@@ -121,8 +121,49 @@ fn check_fit(
                 "called degenerate: {eu} x {ev} at scale {scale}"
             );
         }
+        Err(FitError::Collinear { width, .. }) => {
+            let frame = Frame::from_direction(options.direction.into())
+                .expect("the direction was accepted");
+            let (measured, scale) = projected_width(points, &frame);
+            assert!(
+                measured <= DEGENERATE_FLOOR * scale + f64::MIN_POSITIVE,
+                "called collinear: width {width} (measured {measured}) at scale {scale}"
+            );
+        }
         Err(e) => panic!("unexpected error on a valid cloud: {e}"),
     }
+}
+
+/// Brute force: the largest distance of the projected points from the best line
+/// through them (their principal axis), and the coordinate scale.
+fn projected_width(points: &[[f32; 3]], frame: &Frame) -> (f64, f64) {
+    let uv: Vec<(f64, f64)> = points
+        .iter()
+        .map(|p| {
+            let l = frame.to_local(glam::DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64));
+            (l.x, l.y)
+        })
+        .collect();
+    let n = uv.len() as f64;
+    let (mx, my) = uv
+        .iter()
+        .fold((0.0, 0.0), |a, p| (a.0 + p.0 / n, a.1 + p.1 / n));
+    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
+    for (x, y) in &uv {
+        sxx += (x - mx) * (x - mx);
+        sxy += (x - mx) * (y - my);
+        syy += (y - my) * (y - my);
+    }
+    let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
+    let (nx, ny) = (-angle.sin(), angle.cos());
+    let width = uv
+        .iter()
+        .map(|(x, y)| ((x - mx) * nx + (y - my) * ny).abs())
+        .fold(0.0, f64::max);
+    let scale = uv
+        .iter()
+        .fold(0.0f64, |m, (x, y)| m.max(x.abs()).max(y.abs()));
+    (width, scale)
 }
 
 proptest! {

@@ -11,8 +11,10 @@ pub fn read_cloud(path: &Path) -> Result<Vec<[f32; 3]>> {
         bail!("{} is empty", path.display());
     }
     let format = cloud_format(path, &bytes);
-    let cloud = format::parse_cloud(&bytes, format).with_context(|| format!("cannot parse {}", path.display()))?;
-    shroud_core::cloud::validate_points(&cloud.points).with_context(|| format!("bad point cloud {}", path.display()))?;
+    let cloud = format::parse_cloud(&bytes, format)
+        .with_context(|| format!("cannot parse {}", path.display()))?;
+    shroud_core::cloud::validate_points(&cloud.points)
+        .with_context(|| format!("bad point cloud {}", path.display()))?;
     Ok(cloud.points)
 }
 
@@ -27,7 +29,10 @@ pub fn write_cloud(path: &Path, points: &[[f32; 3]]) -> Result<()> {
     let bytes = match CloudFormat::from_extension(ext) {
         Some(CloudFormat::Ply) => format::write_ply_points(points, None, false),
         Some(CloudFormat::Xyz) | Some(CloudFormat::Csv) => format::write_xyz(points),
-        None => bail!("{}: unknown cloud extension '{ext}' (use .ply, .xyz or .csv)", path.display()),
+        None => bail!(
+            "{}: unknown cloud extension '{ext}' (use .ply, .xyz or .csv)",
+            path.display()
+        ),
     };
     write(path, &bytes)
 }
@@ -58,5 +63,6 @@ pub fn write_surrogate(path: &Path, surrogate: &shroud_core::surrogate::Surrogat
 }
 
 fn is_json(path: &Path, bytes: &[u8]) -> bool {
-    path.extension().is_some_and(|e| e == "json") || bytes.iter().find(|b| !b.is_ascii_whitespace()) == Some(&b'{')
+    path.extension().is_some_and(|e| e == "json")
+        || bytes.iter().find(|b| !b.is_ascii_whitespace()) == Some(&b'{')
 }

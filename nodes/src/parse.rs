@@ -6,7 +6,9 @@ use anyhow::{bail, Context, Result};
 pub fn grid(text: &str) -> Result<(usize, usize)> {
     let parts: Vec<&str> = text.split(['x', 'X']).collect();
     let number = |s: &str| -> Result<usize> {
-        s.trim().parse::<usize>().with_context(|| format!("grid '{text}': '{s}' is not a whole number"))
+        s.trim()
+            .parse::<usize>()
+            .with_context(|| format!("grid '{text}': '{s}' is not a whole number"))
     };
     match parts.as_slice() {
         [n] => Ok((number(n)?, number(n)?)),
@@ -19,11 +21,18 @@ pub fn grid(text: &str) -> Result<(usize, usize)> {
 pub fn numbers<const N: usize>(text: &str, what: &str) -> Result<[f64; N]> {
     let values: Vec<f64> = text
         .split(',')
-        .map(|s| s.trim().parse::<f64>().with_context(|| format!("{what} '{text}': '{s}' is not a number")))
+        .map(|s| {
+            s.trim()
+                .parse::<f64>()
+                .with_context(|| format!("{what} '{text}': '{s}' is not a number"))
+        })
         .collect::<Result<_>>()?;
-    let array: [f64; N] = values
-        .try_into()
-        .map_err(|v: Vec<f64>| anyhow::anyhow!("{what} '{text}' needs {N} comma-separated numbers, got {}", v.len()))?;
+    let array: [f64; N] = values.try_into().map_err(|v: Vec<f64>| {
+        anyhow::anyhow!(
+            "{what} '{text}' needs {N} comma-separated numbers, got {}",
+            v.len()
+        )
+    })?;
     if let Some(bad) = array.iter().find(|x| !x.is_finite()) {
         bail!("{what} '{text}' contains the non-finite value {bad}");
     }

@@ -8,7 +8,12 @@ pub enum CloudError {
     #[error("the point cloud is empty")]
     Empty,
     #[error("point {index} has a non-finite coordinate ({x}, {y}, {z})")]
-    NonFinite { index: usize, x: f32, y: f32, z: f32 },
+    NonFinite {
+        index: usize,
+        x: f32,
+        y: f32,
+        z: f32,
+    },
 }
 
 /// A cloud of points stored as raw f32 xyz triples (the wire and file layout).
@@ -64,9 +69,15 @@ mod tests {
     fn rejects_empty_and_nan() {
         assert_eq!(PointCloud::default().validate(), Err(CloudError::Empty));
         let c = PointCloud::new(vec![[0.0, 0.0, 0.0], [1.0, f32::NAN, 0.0]]);
-        assert!(matches!(c.validate(), Err(CloudError::NonFinite { index: 1, .. })));
+        assert!(matches!(
+            c.validate(),
+            Err(CloudError::NonFinite { index: 1, .. })
+        ));
         let c = PointCloud::new(vec![[0.0, f32::INFINITY, 0.0]]);
-        assert!(matches!(c.validate(), Err(CloudError::NonFinite { index: 0, .. })));
+        assert!(matches!(
+            c.validate(),
+            Err(CloudError::NonFinite { index: 0, .. })
+        ));
         assert!(PointCloud::new(vec![[1.0, 2.0, 3.0]]).validate().is_ok());
     }
 }

@@ -26,7 +26,11 @@ pub struct BandedMatrix<const KL: usize, const KU: usize> {
 impl<const KL: usize, const KU: usize> BandedMatrix<KL, KU> {
     pub fn zeros(n: usize) -> Self {
         let width = 2 * KL + KU + 1;
-        Self { n, width, data: vec![0.0; n * width] }
+        Self {
+            n,
+            width,
+            data: vec![0.0; n * width],
+        }
     }
 
     pub fn n(&self) -> usize {
@@ -82,7 +86,10 @@ impl<const KL: usize, const KU: usize> BandedMatrix<KL, KU> {
         }
         for k in (0..n).rev() {
             let last_col = (k + KU + KL).min(n - 1);
-            let tail: f64 = (k + 1..=last_col).zip(&rhs[k + 1..=last_col]).map(|(c, x)| self.at(k, c) * x).sum();
+            let tail: f64 = (k + 1..=last_col)
+                .zip(&rhs[k + 1..=last_col])
+                .map(|(c, x)| self.at(k, c) * x)
+                .sum();
             rhs[k] = (rhs[k] - tail) / self.at(k, k);
         }
         Ok(())
@@ -113,15 +120,31 @@ mod tests {
         let mut dense = vec![vec![0.0; n]; n];
         let mut a = BandedMatrix::<2, 2>::zeros(n);
         for (i, row) in dense.iter_mut().enumerate() {
-            for (j, entry) in row.iter_mut().enumerate().take((i + 3).min(n)).skip(i.saturating_sub(2)) {
+            for (j, entry) in row
+                .iter_mut()
+                .enumerate()
+                .take((i + 3).min(n))
+                .skip(i.saturating_sub(2))
+            {
                 // A zero diagonal forces pivoting.
-                let v = if i == j { if i == 2 { 0.0 } else { 1.0 } } else { ((i * 3 + j) % 5) as f64 - 1.5 };
+                let v = if i == j {
+                    if i == 2 {
+                        0.0
+                    } else {
+                        1.0
+                    }
+                } else {
+                    ((i * 3 + j) % 5) as f64 - 1.5
+                };
                 *entry = v;
                 a.add(i, j, v);
             }
         }
         let x: Vec<f64> = (0..n).map(|i| i as f64 - 2.5).collect();
-        let mut rhs: Vec<f64> = dense.iter().map(|r| r.iter().zip(&x).map(|(p, q)| p * q).sum()).collect();
+        let mut rhs: Vec<f64> = dense
+            .iter()
+            .map(|r| r.iter().zip(&x).map(|(p, q)| p * q).sum())
+            .collect();
         a.solve_in_place(&mut rhs).unwrap();
         for (p, q) in rhs.iter().zip(&x) {
             assert!((p - q).abs() < 1e-9, "{rhs:?}");

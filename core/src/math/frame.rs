@@ -51,7 +51,12 @@ impl Frame {
         };
         let u = axis.cross(w).normalize();
         let v = w.cross(u);
-        Ok(Self { direction: d, u, v, w })
+        Ok(Self {
+            direction: d,
+            u,
+            v,
+            w,
+        })
     }
 
     /// Frame coordinates (u, v, w) of a world point.
@@ -98,7 +103,11 @@ mod tests {
 
     #[test]
     fn directions_of_extreme_magnitude_normalise() {
-        for d in [DVec3::new(1e300, 1e300, -1e300), DVec3::new(0.0, 0.0, -1e-200), DVec3::new(0.0, -1e200, -1e200)] {
+        for d in [
+            DVec3::new(1e300, 1e300, -1e300),
+            DVec3::new(0.0, 0.0, -1e-200),
+            DVec3::new(0.0, -1e200, -1e200),
+        ] {
             let f = Frame::from_direction(d).unwrap();
             assert!((f.direction.length() - 1.0).abs() < 1e-12);
         }

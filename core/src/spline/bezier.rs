@@ -36,11 +36,19 @@ pub fn bezier_patch(surface: &UniformCubicSurface, h: usize, g: usize) -> Bezier
 
 impl BezierPatch {
     pub fn min(&self) -> f64 {
-        self.0.iter().flatten().copied().fold(f64::INFINITY, f64::min)
+        self.0
+            .iter()
+            .flatten()
+            .copied()
+            .fold(f64::INFINITY, f64::min)
     }
 
     pub fn max(&self) -> f64 {
-        self.0.iter().flatten().copied().fold(f64::NEG_INFINITY, f64::max)
+        self.0
+            .iter()
+            .flatten()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max)
     }
 
     /// The patch restricted to `[s0, s1] x [t0, t1]` of the unit square (exact
@@ -93,7 +101,9 @@ mod tests {
 
     #[test]
     fn bezier_patch_agrees_with_spline() {
-        let b: Vec<f64> = (0..20).map(|i| ((i * 7) % 5) as f64 - 1.3 * (i % 3) as f64).collect();
+        let b: Vec<f64> = (0..20)
+            .map(|i| ((i * 7) % 5) as f64 - 1.3 * (i % 3) as f64)
+            .collect();
         let surf = UniformCubicSurface::new(5, 4, b).unwrap();
         for (h, g) in [(0, 0), (3, 2), (1, 1)] {
             let p = bezier_patch(&surf, h, g);

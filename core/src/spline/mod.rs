@@ -8,7 +8,9 @@ mod curve;
 mod matrix_form;
 mod surface;
 
-pub use basis::{basis_derivative_weights, basis_weights, eval_eq1, knot_interval, second_difference};
+pub use basis::{
+    basis_derivative_weights, basis_weights, eval_eq1, knot_interval, second_difference,
+};
 pub use bezier::{bezier_patch, cubic_bezier_of_interval, BezierPatch};
 pub use curve::UniformCubicCurve;
 pub use matrix_form::{difference_matrix, evaluation_matrix};

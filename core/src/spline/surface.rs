@@ -76,8 +76,9 @@ impl UniformCubicSurface {
     /// [`Self::eval`] to the bit.
     #[inline(always)]
     pub fn cell_value(a: &[f64; 4], b: &[f64; 4], c: &[[f64; 4]; 4]) -> f64 {
-        let p: [f64; 4] =
-            std::array::from_fn(|q| a[q] * (((b[0] * c[0][q] + b[1] * c[1][q]) + b[2] * c[2][q]) + b[3] * c[3][q]));
+        let p: [f64; 4] = std::array::from_fn(|q| {
+            a[q] * (((b[0] * c[0][q] + b[1] * c[1][q]) + b[2] * c[2][q]) + b[3] * c[3][q])
+        });
         (p[0] + p[2]) + (p[1] + p[3])
     }
 
@@ -97,9 +98,15 @@ mod tests {
         // f(s,t) = x(s) * y(t) when b_kj = x_j * y_k.
         let x = vec![1.0, 2.0, 0.5, 3.0];
         let y = vec![-1.0, 0.0, 2.0];
-        let b: Vec<f64> = y.iter().flat_map(|yk| x.iter().map(move |xj| xj * yk)).collect();
+        let b: Vec<f64> = y
+            .iter()
+            .flat_map(|yk| x.iter().map(move |xj| xj * yk))
+            .collect();
         let surf = UniformCubicSurface::new(4, 3, b).unwrap();
-        let (cx, cy) = (UniformCubicCurve::new(x).unwrap(), UniformCubicCurve::new(y).unwrap());
+        let (cx, cy) = (
+            UniformCubicCurve::new(x).unwrap(),
+            UniformCubicCurve::new(y).unwrap(),
+        );
         for (s, t) in [(0.0, 0.0), (1.3, 0.7), (3.0, 2.0), (2.5, 1.99)] {
             assert!((surf.eval(s, t) - cx.eval(s) * cy.eval(t)).abs() < 1e-12);
             let (ds, dt) = surf.gradient(s, t);

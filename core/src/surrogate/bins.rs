@@ -23,7 +23,10 @@ pub struct Binning {
 impl Binning {
     fn empty(sides: &[Side], cells_s: usize, cells_t: usize, sub: usize) -> Self {
         Self {
-            maxima: sides.iter().map(|&side| SubCellMaxima::new(side, cells_s, cells_t, sub, sub)).collect(),
+            maxima: sides
+                .iter()
+                .map(|&side| SubCellMaxima::new(side, cells_s, cells_t, sub, sub))
+                .collect(),
             trim: TrimMask::empty(cells_s, cells_t),
         }
     }
@@ -31,15 +34,29 @@ impl Binning {
     /// Maxima and trim bits are unions, so merging in any order gives one result.
     fn merge(mut self, other: Binning) -> Binning {
         self.trim.merge(&other.trim);
-        self.maxima.iter_mut().zip(&other.maxima).for_each(|(a, b)| a.merge(b));
+        self.maxima
+            .iter_mut()
+            .zip(&other.maxima)
+            .for_each(|(a, b)| a.merge(b));
         self
     }
 }
 
+/// Sub-cells per cell along each parameter at most: more would only cost memory
+/// (the candidates already are nearly every point), and slot numbers must stay
+/// below `2^31` on the largest grid.
+pub const MAX_SUB_CELLS: usize = 32;
+
 /// Bins every point once (in parallel). `sub` is the number of sub-cells per cell
-/// along each parameter.
-pub fn bin_points(points: &[[f32; 3]], frame: &Frame, domain: &Domain, sides: &[Side], sub: usize) -> Binning {
-    let sub = sub.max(1);
+/// along each parameter (clamped to `1..=MAX_SUB_CELLS`).
+pub fn bin_points(
+    points: &[[f32; 3]],
+    frame: &Frame,
+    domain: &Domain,
+    sides: &[Side],
+    sub: usize,
+) -> Binning {
+    let sub = sub.clamp(1, MAX_SUB_CELLS);
     let (cs, ct) = (domain.cols - 1, domain.rows - 1);
     let locator = domain.locator(frame);
     // One part per thread: every part fills and merges its own sub-cell arrays,
@@ -73,22 +90,28 @@ struct Slots {
 
 impl Default for Slots {
     fn default() -> Self {
-        Self { slot: [0; BLOCK], cell: [0; BLOCK], triangle: [0; BLOCK] }
+        Self {
+            slot: [0; BLOCK],
+            cell: [0; BLOCK],
+            triangle: [0; BLOCK],
+        }
     }
 }
 
 impl Slots {
     /// Splitting this arithmetic from the dependent read-modify-write updates
-    /// keeps both loops tight (the arithmetic vectorises).
+    /// keeps both loops tight (the arithmetic vectorises). Indices are computed
+    /// in floats, exactly (small integers), and converted once.
     #[inline]
     fn compute(&mut self, block: &LocatedBlock, cells_s: usize, sub: usize) {
-        let (subf, last) = (sub as f64, (sub - 1) as f64);
+        let (cells_s, subf, last) = (cells_s as f64, sub as f64, (sub - 1) as f64);
         for i in 0..BLOCK {
-            // `floor` is the truncating cast here (u, v >= 0).
-            let qs = small_integer((block.u[i] * subf).floor().min(last));
-            let qt = small_integer((block.v[i] * subf).floor().min(last));
-            self.cell[i] = block.g[i] * cells_s as u32 + block.h[i];
-            self.slot[i] = (self.cell[i] * sub as u32 + qt) * sub as u32 + qs;
+            // `floor` is the truncating cast of the original (u, v >= 0).
+            let qs = (block.u[i] * subf).floor().min(last);
+            let qt = (block.v[i] * subf).floor().min(last);
+            let cell = block.g[i] * cells_s + block.h[i];
+            self.cell[i] = small_integer(cell);
+            self.slot[i] = small_integer((cell * subf + qt) * subf + qs);
             self.triangle[i] = triangle_of(block.u[i], block.v[i]);
         }
     }
@@ -96,14 +119,32 @@ impl Slots {
     #[inline]
     fn scatter(&self, block: &LocatedBlock, acc: &mut Binning, first: usize) {
         let n = block.len;
+        let bits = &mut acc.trim.bits[..];
         for i in 0..n {
-            acc.trim.bits[self.cell[i] as usize] |= self.triangle[i];
+            bits[self.cell[i] as usize] |= self.triangle[i];
         }
         for m in &mut acc.maxima {
             let sign = m.side.sign();
+            let (height, index) = m.slots_mut();
             for i in 0..n {
-                m.offer(self.slot[i] as usize, sign * block.w[i], (first + i) as u32);
+                offer(
+                    height,
+                    index,
+                    self.slot[i] as usize,
+                    sign * block.w[i],
+                    (first + i) as u32,
+                );
             }
         }
+    }
+}
+
+/// Keeps `(h, i)` in `slot` if it beats the slot's point. Points are offered in
+/// increasing index order within a pass, so a tie keeps the earlier point.
+#[inline(always)]
+fn offer(height: &mut [f64], index: &mut [u32], slot: usize, h: f64, i: u32) {
+    if h > height[slot] {
+        height[slot] = h;
+        index[slot] = i;
     }
 }

@@ -134,7 +134,9 @@ mod tests {
                 let s = k as f64 / 20.0;
                 let h = (s.floor() as usize).min(n - 2);
                 let u = s - h as f64;
-                free[h] || free[h + 1] || fit.curve.eval(s) >= (1.0 - u) * values[h] + u * values[h + 1] - 1e-9
+                free[h]
+                    || free[h + 1]
+                    || fit.curve.eval(s) >= (1.0 - u) * values[h] + u * values[h + 1] - 1e-9
             })
     }
 

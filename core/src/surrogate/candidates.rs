@@ -14,7 +14,10 @@ pub struct Candidate {
 }
 
 /// One candidate per occupied sub-cell.
-pub fn candidates_of(maxima: &SubCellMaxima, param_of: &dyn Fn(u32) -> (f64, f64)) -> Vec<Candidate> {
+pub fn candidates_of(
+    maxima: &SubCellMaxima,
+    param_of: &dyn Fn(u32) -> (f64, f64),
+) -> Vec<Candidate> {
     maxima
         .occupied()
         .map(|(_, height, idx)| {

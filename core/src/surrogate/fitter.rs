@@ -2,12 +2,12 @@
 //! candidates, optional symmetrisation and tightening, sandwich un-crossing, and
 //! certification of every point.
 
-use super::bins::bin_points;
+use super::bins::{bin_points, SubCellMaxima, MAX_SUB_CELLS};
 use super::candidates::candidates_of;
 use super::certify::{certify_surface, secure_points};
 use super::error::FitError;
 use super::footprint::domain_of_cloud;
-use super::model::{SafeSurface, Side, Sides, Surrogate};
+use super::model::{Domain, SafeSurface, Side, Sides, Surrogate};
 use super::reduction::{fit_by_reduction, Orientation, ReductionWarmStart};
 use super::scattered_curve::DEFAULT_MAX_SOLVES;
 use super::stats::FitStats;
@@ -18,6 +18,10 @@ use crate::math::Frame;
 use crate::spline::UniformCubicSurface;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
+
+/// Enclosed empty regions up to this many triangles (two cells) are sampling
+/// gaps and stay kept (see `TrimMask::fill_small_holes`).
+const SMALL_HOLE: usize = 8;
 
 /// Largest grid side accepted (a guard against absurd allocations from input).
 pub const MAX_GRID: usize = 1024;
@@ -48,7 +52,8 @@ pub struct FitOptions {
     /// Trim cells (triangles) without data.
     pub trim: bool,
     pub tightness: Tightness,
-    /// Sub-cells per cell along each parameter in the streaming pass.
+    /// Sub-cells per cell along each parameter in the streaming pass (at most
+    /// `MAX_SUB_CELLS / 2` = 16; larger values are clamped).
     pub sub_cells: usize,
     /// Solve budget of Heuristic(σ, b, λ) per line.
     pub max_solves: usize,
@@ -95,10 +100,19 @@ impl SurrogateFitter {
             return Err(FitError::GridTooSmall { cols, rows });
         }
         if cols > MAX_GRID || rows > MAX_GRID {
-            return Err(FitError::GridTooLarge { cols, rows, max: MAX_GRID });
+            return Err(FitError::GridTooLarge {
+                cols,
+                rows,
+                max: MAX_GRID,
+            });
         }
         let frame = Frame::from_direction(DVec3::from_array(options.direction))?;
-        Ok(Self { options, frame, warm: Default::default(), frames: 0 })
+        Ok(Self {
+            options,
+            frame,
+            warm: Default::default(),
+            frames: 0,
+        })
     }
 
     pub fn options(&self) -> &FitOptions {
@@ -117,55 +131,55 @@ impl SurrogateFitter {
 
     /// Fits and certifies a surrogate of `points`, warm-started from the last fit.
     pub fn fit(&mut self, points: &[[f32; 3]]) -> Result<Surrogate, FitError> {
-        let o = self.options.clone();
+        let o = &self.options;
         let frame = self.frame;
         let domain = domain_of_cloud(points, &frame, o.cols, o.rows)?;
-        let sides = o.sides.list();
-        let sub = o.sub_cells.clamp(1, MAX_SUB_CELLS);
+        let sub = o.sub_cells.clamp(1, MAX_SUB_CELLS / 2);
         let check = check_factor(points.len(), (o.cols - 1) * (o.rows - 1), sub);
-        let binning = bin_points(points, &frame, &domain, sides, sub * check);
-        let trim = if o.trim { binning.trim.clone() } else { TrimMask::full(o.cols - 1, o.rows - 1) };
+        let binning = bin_points(points, &frame, &domain, o.sides.list(), sub * check);
+        let candidates: Vec<u32> = binning
+            .maxima
+            .iter()
+            .flat_map(|m| m.occupied().map(|(_, _, i)| i))
+            .collect();
+        super::collinear::ensure_not_collinear(points, &frame, &candidates)?;
+        let trim = if o.trim {
+            let mut trim = binning.trim.clone();
+            trim.fill_small_holes(SMALL_HOLE);
+            trim
+        } else {
+            TrimMask::full(o.cols - 1, o.rows - 1)
+        };
+        let mut stats = FitStats {
+            points: points.len() as u64,
+            warm_started: self.frames > 0,
+            ..Default::default()
+        };
         let locator = domain.locator(&frame);
         let param_of = |i: u32| {
             let (s, t, _) = locator.locate_f32(&points[i as usize]);
             (s, t)
         };
-        let mut stats = FitStats { points: points.len() as u64, warm_started: self.frames > 0, ..Default::default() };
         let mut surfaces = Vec::with_capacity(2);
-        for (fine, &side) in binning.maxima.iter().zip(sides) {
+        for fine in &binning.maxima {
             let coarse = (check > 1).then(|| fine.coarsen(check));
             let maxima = coarse.as_ref().unwrap_or(fine);
-            let warm = &mut self.warm[side_index(side)];
-            let mut coefficients =
-                fit_by_reduction(maxima, Orientation::AlongS, &param_of, &mut warm[0], o.max_solves, &mut stats)?;
-            if o.symmetrize {
-                let other =
-                    fit_by_reduction(maxima, Orientation::AlongT, &param_of, &mut warm[1], o.max_solves, &mut stats)?;
-                coefficients.iter_mut().zip(&other).for_each(|(a, b)| *a = 0.5 * (*a + b));
-            }
-            let mut surface = UniformCubicSurface::new(o.cols, o.rows, coefficients).ok_or(FitError::NoSamples)?;
-            let candidates = candidates_of(maxima, &param_of);
-            stats.tightening_moves += match o.tightness {
-                Tightness::Plain => 0,
-                Tightness::Lowered => lower_onto_candidates(&mut surface, &candidates, &trim, sub, o.sweeps),
-                Tightness::Optimal => crate::tight::lower_to_optimum(&mut surface, &candidates, &trim, sub),
-            };
-            // Back from the upper sense to real heights.
-            surface.coefficients.iter_mut().for_each(|c| *c *= side.sign());
-            surfaces.push((side, surface));
+            let surface = self.fit_side(maxima, &param_of, &trim, sub, &mut stats)?;
+            surfaces.push((fine.side, surface));
         }
         if let [(Side::Upper, up), (Side::Lower, low)] = surfaces.as_mut_slice() {
             stats.uncrossed_coefficients = uncross(up, low, &trim);
         }
-        let mut result = Surrogate { frame, domain, trim, upper: None, lower: None, stats };
-        for ((side, mut surface), fine) in surfaces.into_iter().zip(&binning.maxima) {
-            // The sub-cell maxima first (a few thousand points): what they catch,
-            // certification does not have to correct with another look at the cloud.
-            let check_points: Vec<u32> = fine.occupied().map(|(_, _, index)| index).collect();
-            let secured = secure_points(points, &check_points, &frame, &domain, &mut surface, side)?;
-            let mut certificate = certify_surface(points, &frame, &domain, &mut surface, side)?;
-            certificate.corrected_points += secured;
-            let safe = SafeSurface { side, surface, certificate };
+        let mut result = Surrogate {
+            frame,
+            domain,
+            trim,
+            upper: None,
+            lower: None,
+            stats,
+        };
+        for ((side, surface), fine) in surfaces.into_iter().zip(&binning.maxima) {
+            let safe = certify_side(points, &frame, &domain, surface, side, fine)?;
             match side {
                 Side::Upper => result.upper = Some(safe),
                 Side::Lower => result.lower = Some(safe),
@@ -174,18 +188,94 @@ impl SurrogateFitter {
         self.frames += 1;
         Ok(result)
     }
+
+    /// Section 6's reduction on one side's candidates (both orientations averaged
+    /// if asked), then the tightening; the surface comes back in real heights.
+    fn fit_side(
+        &mut self,
+        maxima: &SubCellMaxima,
+        param_of: &(dyn Fn(u32) -> (f64, f64) + Sync),
+        trim: &TrimMask,
+        sub: usize,
+        stats: &mut FitStats,
+    ) -> Result<UniformCubicSurface, FitError> {
+        let o = &self.options;
+        let side = maxima.side;
+        let warm = &mut self.warm[side_index(side)];
+        let mut coefficients = fit_by_reduction(
+            maxima,
+            Orientation::AlongS,
+            param_of,
+            &mut warm[0],
+            o.max_solves,
+            stats,
+        )?;
+        if o.symmetrize {
+            let other = fit_by_reduction(
+                maxima,
+                Orientation::AlongT,
+                param_of,
+                &mut warm[1],
+                o.max_solves,
+                stats,
+            )?;
+            coefficients
+                .iter_mut()
+                .zip(&other)
+                .for_each(|(a, b)| *a = 0.5 * (*a + b));
+        }
+        let mut surface =
+            UniformCubicSurface::new(o.cols, o.rows, coefficients).ok_or(FitError::NoSamples)?;
+        let candidates = candidates_of(maxima, param_of);
+        stats.tightening_moves += match o.tightness {
+            Tightness::Plain => 0,
+            Tightness::Lowered => {
+                lower_onto_candidates(&mut surface, &candidates, trim, sub, o.sweeps)
+            }
+            Tightness::Optimal => {
+                crate::tight::lower_to_optimum(&mut surface, &candidates, trim, sub)
+            }
+        };
+        // Back from the upper sense to real heights.
+        surface
+            .coefficients
+            .iter_mut()
+            .for_each(|c| *c *= side.sign());
+        Ok(surface)
+    }
 }
 
-/// Sub-cells per cell along each parameter at most: more would only cost memory
-/// (the candidates already are nearly every point) and could overflow the slots.
-const MAX_SUB_CELLS: usize = 16;
+/// Secures the check points (the sub-cell maxima, a few thousand points: what they
+/// catch, certification need not correct with another look at the cloud), then
+/// certifies every point.
+fn certify_side(
+    points: &[[f32; 3]],
+    frame: &Frame,
+    domain: &Domain,
+    mut surface: UniformCubicSurface,
+    side: Side,
+    check: &SubCellMaxima,
+) -> Result<SafeSurface, FitError> {
+    let check_points: Vec<u32> = check.occupied().map(|(_, _, index)| index).collect();
+    let secured = secure_points(points, &check_points, frame, domain, &mut surface, side)?;
+    let mut certificate = certify_surface(points, frame, domain, &mut surface, side)?;
+    certificate.corrected_points += secured;
+    Ok(SafeSurface {
+        side,
+        surface,
+        certificate,
+    })
+}
 
 /// How much finer than the candidates' sub-cells the check points' sub-cells are:
-/// twice (each candidate sub-cell split in four) while that still leaves about a
-/// point per check sub-cell, else the candidates themselves. A power of two, so
-/// the candidates follow from the check points exactly (`SubCellMaxima::coarsen`).
+/// twice (each candidate sub-cell split in four) while that leaves two points per
+/// check sub-cell on average, else the candidates themselves. Finer check points
+/// catch more of what certification would otherwise correct, but their arrays
+/// (one per thread) must stay small next to the cloud, and a sparse cloud has
+/// few points besides its candidates anyway. A power of two, so the candidates
+/// follow from the check points exactly (`SubCellMaxima::coarsen`).
 fn check_factor(points: usize, cells: usize, sub: usize) -> usize {
-    if cells * (2 * sub) * (2 * sub) <= points {
+    if 2 * cells * (2 * sub) * (2 * sub) <= points {
         2
     } else {
         1
@@ -196,5 +286,80 @@ fn side_index(side: Side) -> usize {
     match side {
         Side::Upper => 0,
         Side::Lower => 1,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cloud(n: usize) -> Vec<[f32; 3]> {
+        (0..n)
+            .map(|i| {
+                let a = i as f32 * 0.618_034;
+                let (x, y) = ((a * 1.3).sin() * 2.0, (a * 0.7).cos() * 1.5);
+                [
+                    x,
+                    y,
+                    (x * 1.7).sin() * (y * 1.1).cos() + 0.1 * (a * 13.0).sin(),
+                ]
+            })
+            .collect()
+    }
+
+    /// Same input, same output bits, however many threads share the work.
+    #[test]
+    fn fits_are_independent_of_the_thread_count() {
+        let points = cloud(40_000);
+        for sides in [Sides::Upper, Sides::Sandwich] {
+            let options = FitOptions {
+                sides,
+                ..Default::default()
+            };
+            let fit_with = |threads: usize| {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                pool.install(|| format!("{:?}", fit_surrogate(&points, &options).unwrap()))
+            };
+            let one = fit_with(1);
+            assert_eq!(one, fit_with(2));
+            assert_eq!(one, fit_with(3));
+        }
+    }
+
+    #[test]
+    fn check_points_are_finer_only_while_they_are_well_filled() {
+        assert_eq!(check_factor(300_000, 19 * 19, 4), 2);
+        assert_eq!(check_factor(50_000, 19 * 19, 4), 2);
+        assert_eq!(check_factor(30_000, 19 * 19, 4), 1);
+        assert_eq!(check_factor(30_000, 59 * 59, 4), 1);
+    }
+
+    #[test]
+    fn every_point_is_certified_and_the_trim_holds_every_point() {
+        let points = cloud(50_000);
+        let options = FitOptions {
+            sides: Sides::Sandwich,
+            ..Default::default()
+        };
+        let surrogate = fit_surrogate(&points, &options).unwrap();
+        let locator = surrogate.domain.locator(&surrogate.frame);
+        let mut mask = TrimMask::empty(options.cols - 1, options.rows - 1);
+        for p in &points {
+            let (s, t, _) = locator.locate_f32(p);
+            mask.mark(s, t);
+        }
+        mask.fill_small_holes(SMALL_HOLE);
+        assert_eq!(mask, surrogate.trim);
+        for safe in surrogate.surfaces() {
+            let c = &safe.certificate;
+            assert_eq!((c.points_checked, c.violations), (50_000, 0));
+            for p in &points {
+                let (s, t, w) = locator.locate_f32(p);
+                assert!(safe.side.sign() * (safe.surface.eval(s, t) - w) >= c.min_gap);
+            }
+        }
     }
 }

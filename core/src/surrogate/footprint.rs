@@ -30,12 +30,20 @@ impl Bounds {
 }
 
 /// Validates the cloud (non-empty, finite) and computes its domain, in one pass.
-pub fn domain_of_cloud(points: &[[f32; 3]], frame: &Frame, cols: usize, rows: usize) -> Result<Domain, FitError> {
+pub fn domain_of_cloud(
+    points: &[[f32; 3]],
+    frame: &Frame,
+    cols: usize,
+    rows: usize,
+) -> Result<Domain, FitError> {
     if points.is_empty() {
         return Err(CloudError::Empty.into());
     }
     // Minima and maxima do not depend on the split, so one part per thread will do.
-    let part_len = points.len().div_ceil(2 * rayon::current_num_threads().max(1)).max(1024);
+    let part_len = points
+        .len()
+        .div_ceil(2 * rayon::current_num_threads().max(1))
+        .max(1024);
     let b = points
         .par_chunks(part_len)
         .map(|pts| bounds_of(pts, frame))
@@ -49,7 +57,10 @@ pub fn domain_of_cloud(points: &[[f32; 3]], frame: &Frame, cols: usize, rows: us
     // Below this the parameter map would amplify f32 input rounding into noise.
     let floor = scale * 1e-9 + f64::MIN_POSITIVE;
     if eu <= floor || ev <= floor {
-        return Err(FitError::Degenerate { extent_u: eu, extent_v: ev });
+        return Err(FitError::Degenerate {
+            extent_u: eu,
+            extent_v: ev,
+        });
     }
     // `+ 0.0` turns a -0.0 minimum into +0.0: which zero a min over {-0.0, +0.0}
     // returns may depend on how the parts were split.
@@ -74,25 +85,31 @@ fn bounds_of(points: &[[f32; 3]], frame: &Frame) -> Bounds {
     let mut probe = [0.0f64; LANES];
     let groups = points.chunks_exact(LANES);
     let rest = groups.remainder();
-    let mut visit = |l: usize, p: &[f32; 3]| {
+    for group in groups {
+        // One lane per point of the group, each step over all lanes at once.
+        let coordinate = |c: usize| -> [f64; LANES] { std::array::from_fn(|l| group[l][c] as f64) };
+        let (x, y, z) = (coordinate(0), coordinate(1), coordinate(2));
+        let a: [f64; LANES] =
+            std::array::from_fn(|l| (x[l] * fu.x) + (y[l] * fu.y) + (z[l] * fu.z));
+        let b: [f64; LANES] =
+            std::array::from_fn(|l| (x[l] * fv.x) + (y[l] * fv.y) + (z[l] * fv.z));
+        for l in 0..LANES {
+            probe[l] += a[l] * 0.0;
+            // Comparisons rather than `min`/`max`: single vector instructions
+            // (the NaN handling is moot, see above).
+            lo[0][l] = if a[l] < lo[0][l] { a[l] } else { lo[0][l] };
+            hi[0][l] = if a[l] > hi[0][l] { a[l] } else { hi[0][l] };
+            lo[1][l] = if b[l] < lo[1][l] { b[l] } else { lo[1][l] };
+            hi[1][l] = if b[l] > hi[1][l] { b[l] } else { hi[1][l] };
+        }
+    }
+    for p in rest {
         let (x, y, z) = (p[0] as f64, p[1] as f64, p[2] as f64);
         let a = (x * fu.x) + (y * fu.y) + (z * fu.z);
         let b = (x * fv.x) + (y * fv.y) + (z * fv.z);
-        probe[l] += a * 0.0;
-        // Comparisons rather than `min`/`max`: they compile to single vector
-        // instructions (the NaN handling is moot, see above).
-        lo[0][l] = if a < lo[0][l] { a } else { lo[0][l] };
-        hi[0][l] = if a > hi[0][l] { a } else { hi[0][l] };
-        lo[1][l] = if b < lo[1][l] { b } else { lo[1][l] };
-        hi[1][l] = if b > hi[1][l] { b } else { hi[1][l] };
-    };
-    for group in groups {
-        for (l, p) in group.iter().enumerate() {
-            visit(l, p);
-        }
-    }
-    for (l, p) in rest.iter().enumerate() {
-        visit(l, p);
+        probe[0] += a * 0.0;
+        (lo[0][0], hi[0][0]) = (lo[0][0].min(a), hi[0][0].max(a));
+        (lo[1][0], hi[1][0]) = (lo[1][0].min(b), hi[1][0].max(b));
     }
     let fold = |v: &[f64; LANES], f: fn(f64, f64) -> f64| v[1..].iter().fold(v[0], |m, &x| f(m, x));
     Bounds {
@@ -128,8 +145,10 @@ mod tests {
             })
             .collect();
         let domain = domain_of_cloud(&points, &frame, 11, 7).unwrap();
-        let local: Vec<DVec3> =
-            points.iter().map(|p| frame.to_local(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64))).collect();
+        let local: Vec<DVec3> = points
+            .iter()
+            .map(|p| frame.to_local(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)))
+            .collect();
         let u_min = local.iter().map(|l| l.x).fold(f64::INFINITY, f64::min);
         let u_max = local.iter().map(|l| l.x).fold(f64::NEG_INFINITY, f64::max);
         let v_min = local.iter().map(|l| l.y).fold(f64::INFINITY, f64::min);
@@ -145,7 +164,18 @@ mod tests {
         points[3001] = [0.0, f32::INFINITY, 0.0];
         points[4002] = [f32::NAN, 0.0, 0.0];
         let err = domain_of_cloud(&points, &frame, 4, 4).unwrap_err();
-        assert_eq!(err, FitError::Cloud(CloudError::NonFinite { index: 3001, x: 0.0, y: f32::INFINITY, z: 0.0 }));
-        assert!(matches!(domain_of_cloud(&[], &frame, 4, 4), Err(FitError::Cloud(CloudError::Empty))));
+        assert_eq!(
+            err,
+            FitError::Cloud(CloudError::NonFinite {
+                index: 3001,
+                x: 0.0,
+                y: f32::INFINITY,
+                z: 0.0
+            })
+        );
+        assert!(matches!(
+            domain_of_cloud(&[], &frame, 4, 4),
+            Err(FitError::Cloud(CloudError::Empty))
+        ));
     }
 }

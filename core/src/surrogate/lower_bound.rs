@@ -25,7 +25,9 @@ pub fn broken_line_lower_bound(b: &[f64]) -> Vec<f64> {
 
 /// `min(Δ_i b, 0)` for every `i`, precomputed for repeated bound evaluation.
 pub fn negative_differences(b: &[f64]) -> Vec<f64> {
-    (0..b.len()).map(|i| second_difference(b, i).min(0.0)).collect()
+    (0..b.len())
+        .map(|i| second_difference(b, i).min(0.0))
+        .collect()
 }
 
 /// Lemma 5.1 bound (5) at `s`, given `neg = negative_differences(b)`.
@@ -93,7 +95,10 @@ mod tests {
             let mut pts: Vec<(f64, f64)> = (0..40)
                 .map(|_| {
                     let s = h + rng.random_range(0.0..1.0);
-                    (s, scattered_lower_bound(&b, &neg, s) - rng.random_range(0.0..2.0))
+                    (
+                        s,
+                        scattered_lower_bound(&b, &neg, s) - rng.random_range(0.0..2.0),
+                    )
                 })
                 .collect();
             pts.sort_by(|a, c| a.0.total_cmp(&c.0));

@@ -5,6 +5,7 @@ pub mod bins;
 mod broken_line;
 mod candidates;
 mod certify;
+mod collinear;
 mod error;
 mod fitter;
 mod footprint;
@@ -29,8 +30,8 @@ pub use lower_bound::{broken_line_lower_bound, negative_differences, scattered_l
 pub use model::{Certificate, Domain, Locator, SafeSurface, Side, Sides, Surrogate, DOMAIN_SLACK};
 pub use reduction::Orientation;
 pub use scattered_curve::{
-    fit_curve_above, fit_sorted_candidates_above, hull_per_interval, CurveWarmStart, ScatteredCurveFit,
-    DEFAULT_MAX_SOLVES,
+    fit_curve_above, fit_sorted_candidates_above, hull_per_interval, CurveWarmStart,
+    ScatteredCurveFit, DEFAULT_MAX_SOLVES,
 };
 pub use stats::{FitStats, Histogram};
 pub use tighten::lower_onto_candidates;

@@ -58,7 +58,9 @@ impl FromStr for Sides {
             "upper" => Ok(Sides::Upper),
             "lower" => Ok(Sides::Lower),
             "sandwich" => Ok(Sides::Sandwich),
-            other => Err(format!("unknown side '{other}': expected upper, lower or sandwich")),
+            other => Err(format!(
+                "unknown side '{other}': expected upper, lower or sandwich"
+            )),
         }
     }
 }
@@ -106,7 +108,8 @@ impl Domain {
 
     pub fn contains_param(&self, s: f64, t: f64) -> bool {
         let (smax, tmax) = ((self.cols - 1) as f64, (self.rows - 1) as f64);
-        (-DOMAIN_SLACK..=smax + DOMAIN_SLACK).contains(&s) && (-DOMAIN_SLACK..=tmax + DOMAIN_SLACK).contains(&t)
+        (-DOMAIN_SLACK..=smax + DOMAIN_SLACK).contains(&s)
+            && (-DOMAIN_SLACK..=tmax + DOMAIN_SLACK).contains(&t)
     }
 
     /// Frame coordinates `(u, v)` of parameters `(s, t)`.
@@ -130,7 +133,11 @@ pub struct Locator {
 impl Locator {
     #[inline]
     pub fn locate(&self, p: DVec3) -> (f64, f64, f64) {
-        ((p.dot(self.u) - self.u_min) * self.inv_u, (p.dot(self.v) - self.v_min) * self.inv_v, p.dot(self.w))
+        (
+            (p.dot(self.u) - self.u_min) * self.inv_u,
+            (p.dot(self.v) - self.v_min) * self.inv_v,
+            p.dot(self.w),
+        )
     }
 
     #[inline]
@@ -192,6 +199,9 @@ impl Surrogate {
     pub fn world_point(&self, side: Side, s: f64, t: f64) -> Option<DVec3> {
         let surf = self.surface(side)?;
         let (u, v) = self.domain.frame_uv(s, t);
-        Some(self.frame.to_world(DVec3::new(u, v, surf.surface.eval(s, t))))
+        Some(
+            self.frame
+                .to_world(DVec3::new(u, v, surf.surface.eval(s, t))),
+        )
     }
 }

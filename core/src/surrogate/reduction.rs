@@ -54,7 +54,16 @@ pub fn fit_by_reduction(
         Orientation::AlongS => (maxima.cells_s + 1, maxima.cells_t + 1),
         Orientation::AlongT => (maxima.cells_t + 1, maxima.cells_s + 1),
     };
-    let fits = fit_lines(maxima, orientation, param_of, warm, max_solves, curve_len, lines, stats)?;
+    let fits = fit_lines(
+        maxima,
+        orientation,
+        param_of,
+        warm,
+        max_solves,
+        curve_len,
+        lines,
+        stats,
+    )?;
     let columns = fit_columns(&fits, warm, curve_len, lines, stats)?;
     // columns[j][k]: coefficient at curve index j, line k.
     let (cols, rows) = match orientation {
@@ -120,7 +129,10 @@ fn fit_lines(
             None => values.push(None),
         }
     }
-    Ok(LineFits { values: fill_empty_lines(values)?, has_data })
+    Ok(LineFits {
+        values: fill_empty_lines(values)?,
+        has_data,
+    })
 }
 
 /// Lines without any data copy their nearest neighbour with data; every one of
@@ -133,7 +145,11 @@ fn fill_empty_lines(values: Vec<Option<Vec<f64>>>) -> Result<Vec<Vec<f64>>, FitE
     }
     (0..values.len())
         .map(|k| {
-            let nearest = with_data.iter().min_by_key(|&&d| d.abs_diff(k)).copied().unwrap_or(k);
+            let nearest = with_data
+                .iter()
+                .min_by_key(|&&d| d.abs_diff(k))
+                .copied()
+                .unwrap_or(k);
             values[nearest].clone().ok_or(FitError::NoSamples)
         })
         .collect()
@@ -153,7 +169,10 @@ fn line_candidates(
         Orientation::AlongS => (m.bs, m.bt, m.cells_t),
         Orientation::AlongT => (m.bt, m.bs, m.cells_s),
     };
-    let rows: Vec<usize> = [k.checked_sub(1), (k < cross_cells).then_some(k)].into_iter().flatten().collect();
+    let rows: Vec<usize> = [k.checked_sub(1), (k < cross_cells).then_some(k)]
+        .into_iter()
+        .flatten()
+        .collect();
     let mut out = Vec::new();
     let mut interval = Vec::with_capacity(sub_a);
     let mut hull = Vec::new();
@@ -208,7 +227,9 @@ fn fit_columns(
         let values: Vec<f64> = (0..lines).map(|k| fits.values[k][j]).collect();
         let lo = j.saturating_sub(2);
         let hi = (j + 1).min(curve_len - 2);
-        let free: Vec<bool> = (0..lines).map(|k| !(lo..=hi).any(|h| fits.has_data[k][h])).collect();
+        let free: Vec<bool> = (0..lines)
+            .map(|k| !(lo..=hi).any(|h| fits.has_data[k][h]))
+            .collect();
         if free.iter().all(|&f| f) {
             out.push(values);
             continue;

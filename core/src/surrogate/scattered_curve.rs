@@ -60,7 +60,10 @@ pub(crate) fn check_samples(samples: &[(f64, f64)], n: usize) -> Result<(), FitE
     if samples.is_empty() {
         return Err(FitError::NoSamples);
     }
-    match samples.iter().position(|(s, y)| !s.is_finite() || !y.is_finite()) {
+    match samples
+        .iter()
+        .position(|(s, y)| !s.is_finite() || !y.is_finite())
+    {
         Some(index) => Err(FitError::NonFiniteSample { index }),
         None => Ok(()),
     }
@@ -113,7 +116,9 @@ pub fn fit_sorted_candidates_above(
                 break;
             }
         }
-        let Some((worst, excess)) = worst_violation(samples, &b) else { break };
+        let Some((worst, excess)) = worst_violation(samples, &b) else {
+            break;
+        };
         if excess <= tolerance {
             break;
         }
@@ -130,7 +135,13 @@ pub fn fit_sorted_candidates_above(
         selected: selection.iter().map(|s| s.map(|i| samples[i].0)).collect(),
         signs,
     };
-    Ok(ScatteredCurveFit { curve: UniformCubicCurve { coefficients: b }, solves, reselections, raised_intervals, warm })
+    Ok(ScatteredCurveFit {
+        curve: UniformCubicCurve { coefficients: b },
+        solves,
+        reselections,
+        raised_intervals,
+        warm,
+    })
 }
 
 fn scale_max(samples: &[(f64, f64)]) -> f64 {
@@ -252,7 +263,9 @@ fn raise_to_cover(b: &mut [f64], samples: &[(f64, f64)]) -> usize {
         // operation order than the bound) still lands on the safe side.
         let excess = samples[start..end]
             .iter()
-            .map(|&(s, y)| y + ROUNDING_MARGIN * (1.0 + y.abs()) - scattered_lower_bound(b, &neg, s))
+            .map(|&(s, y)| {
+                y + ROUNDING_MARGIN * (1.0 + y.abs()) - scattered_lower_bound(b, &neg, s)
+            })
             .fold(0.0f64, f64::max);
         if excess > 0.0 {
             for x in &mut b[h.saturating_sub(1)..=(h + 2).min(n - 1)] {
@@ -283,7 +296,9 @@ mod tests {
                 let y = match kind {
                     0 => rng.random_range(-1.0..1.0),
                     1 => (s * 1.3).sin() * 2.0 - rng.random_range(0.0..0.5),
-                    _ => (if s > (n as f64) / 2.0 { 3.0 } else { 0.0 }) - rng.random_range(0.0..0.2),
+                    _ => {
+                        (if s > (n as f64) / 2.0 { 3.0 } else { 0.0 }) - rng.random_range(0.0..0.2)
+                    }
                 };
                 (s, y)
             })
@@ -300,7 +315,10 @@ mod tests {
             let samples = random_cloud(&mut rng, n, count);
             let fit = fit_curve_above(&samples, n).unwrap();
             if !all_below(&fit, &samples) {
-                let worst = samples.iter().map(|&(s, y)| (s, y, fit.curve.eval(s) - y)).min_by(|a, b| a.2.total_cmp(&b.2));
+                let worst = samples
+                    .iter()
+                    .map(|&(s, y)| (s, y, fit.curve.eval(s) - y))
+                    .min_by(|a, b| a.2.total_cmp(&b.2));
                 panic!("n {n} count {count} worst {worst:?} fit {fit:?}");
             }
             histogram[fit.solves.min(DEFAULT_MAX_SOLVES)] += 1;
@@ -315,11 +333,20 @@ mod tests {
         // Samples taken from a spline with all Δ < 0 (concave) are interpolated.
         let b: Vec<f64> = (0..8).map(|i| -((i as f64) - 3.5).powi(2)).collect();
         let curve = UniformCubicCurve::new(b).unwrap();
-        let samples: Vec<(f64, f64)> = (0..=70).map(|i| { let s = i as f64 * 0.1; (s, curve.eval(s)) }).collect();
+        let samples: Vec<(f64, f64)> = (0..=70)
+            .map(|i| {
+                let s = i as f64 * 0.1;
+                (s, curve.eval(s))
+            })
+            .collect();
         let fit = fit_curve_above(&samples, 8).unwrap();
         // Lemma 5.1 drops positive second differences, so the bound is loose where
         // the end conditions make the first difference positive; measure inside.
-        let gap = samples.iter().filter(|p| (2.0..=5.0).contains(&p.0)).map(|&(s, y)| fit.curve.eval(s) - y).fold(0.0f64, f64::max);
+        let gap = samples
+            .iter()
+            .filter(|p| (2.0..=5.0).contains(&p.0))
+            .map(|&(s, y)| fit.curve.eval(s) - y)
+            .fold(0.0f64, f64::max);
         assert!(all_below(&fit, &samples));
         assert!(gap < 0.05, "gap {gap}");
     }
@@ -335,7 +362,15 @@ mod tests {
     fn warm_start_needs_fewer_solves_on_a_moving_cloud() {
         let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
         let frame = |shift: f64, rng: &mut rand_pcg::Pcg64| -> Vec<(f64, f64)> {
-            (0..2000).map(|_| { let s = rng.random_range(0.0..19.0); (s, (s * 0.5 + shift).sin() * 3.0 - rng.random_range(0.0..0.3)) }).collect()
+            (0..2000)
+                .map(|_| {
+                    let s = rng.random_range(0.0..19.0);
+                    (
+                        s,
+                        (s * 0.5 + shift).sin() * 3.0 - rng.random_range(0.0..0.3),
+                    )
+                })
+                .collect()
         };
         let (mut cold_total, mut warm_total) = (0, 0);
         let mut warm: Option<CurveWarmStart> = None;
@@ -344,13 +379,17 @@ mod tests {
             samples.sort_by(|a, b| a.0.total_cmp(&b.0));
             let cand = hull_per_interval(&samples, 20);
             let cold = fit_sorted_candidates_above(&cand, 20, None, DEFAULT_MAX_SOLVES).unwrap();
-            let hot = fit_sorted_candidates_above(&cand, 20, warm.as_ref(), DEFAULT_MAX_SOLVES).unwrap();
+            let hot =
+                fit_sorted_candidates_above(&cand, 20, warm.as_ref(), DEFAULT_MAX_SOLVES).unwrap();
             assert!(all_below(&hot, &samples) && all_below(&cold, &samples));
             cold_total += cold.solves;
             warm_total += hot.solves;
             warm = Some(hot.warm);
         }
-        assert!(warm_total < cold_total, "warm {warm_total} cold {cold_total}");
+        assert!(
+            warm_total < cold_total,
+            "warm {warm_total} cold {cold_total}"
+        );
     }
 
     #[test]

@@ -36,7 +36,12 @@ impl Histogram {
         if n == 0 {
             return 0.0;
         }
-        self.counts.iter().enumerate().map(|(v, c)| v as f64 * *c as f64).sum::<f64>() / n as f64
+        self.counts
+            .iter()
+            .enumerate()
+            .map(|(v, c)| v as f64 * *c as f64)
+            .sum::<f64>()
+            / n as f64
     }
 
     pub fn max(&self) -> usize {

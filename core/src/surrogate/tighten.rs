@@ -65,9 +65,9 @@ struct Lowering {
     entries: Vec<Entry>,
     /// `f(p_i) - h_i >= 0` per candidate.
     gap: Vec<f64>,
-    /// Lowest value each coefficient may take (see `crate::tight::lp::floors_of`):
-    /// the lowest candidate in the kept cells it acts on, `-inf` when it acts on
-    /// none (then it has no objective weight and is not moved).
+    /// Lowest value each coefficient may take (see `crate::tight::bounds::floors_of`):
+    /// the lowest candidate in the kept cells it acts on; `+inf` when there is
+    /// none (no objective weight, or no data to lower it onto: it is not moved).
     floor: Vec<f64>,
 }
 
@@ -78,33 +78,43 @@ impl Lowering {
         trim: &TrimMask,
         sub: usize,
     ) -> Self {
-        let (cols, rows, n) = (surface.cols, surface.rows, surface.coefficients.len());
+        let (cols, rows) = (surface.cols, surface.rows);
         let located: Vec<Located> = candidates
             .iter()
             .map(|c| Located::new(c, cols, rows, sub))
             .collect();
-        // Counting pass, then fill (compressed columns).
-        let mut start = vec![0usize; n + 1];
-        for l in &located {
-            l.for_each_slot(cols, rows, |i, _, _| start[i + 1] += 1);
-        }
-        for i in 0..n {
-            start[i + 1] += start[i];
-        }
+        let start = column_starts(&located, cols, rows);
+        let mut lowering = Self {
+            entries: vec![
+                Entry {
+                    row: 0,
+                    weight: 0.0,
+                    inverse_bound: 0.0
+                };
+                start[cols * rows]
+            ],
+            start,
+            gap: Vec::with_capacity(candidates.len()),
+            floor: vec![f64::INFINITY; cols * rows],
+        };
+        lowering.fill(surface, candidates, &located, trim, sub);
+        lowering
+    }
+
+    /// Fills the columns, the gaps and the floors, one candidate at a time.
+    fn fill(
+        &mut self,
+        surface: &UniformCubicSurface,
+        candidates: &[Candidate],
+        located: &[Located],
+        trim: &TrimMask,
+        sub: usize,
+    ) {
+        let (cols, rows) = (surface.cols, surface.rows);
         let sub_max: Vec<[f64; 4]> = (0..sub)
             .map(|q| weights_max(q as f64 / sub as f64, (q + 1) as f64 / sub as f64))
             .collect();
-        let mut fill = start.clone();
-        let mut entries = vec![
-            Entry {
-                row: 0,
-                weight: 0.0,
-                inverse_bound: 0.0
-            };
-            start[n]
-        ];
-        let mut floor = vec![f64::INFINITY; n];
-        let mut gap = Vec::with_capacity(candidates.len());
+        let mut next = self.start.clone();
         for (row, (l, c)) in located.iter().zip(candidates).enumerate() {
             let (wu, wv) = (
                 merged(basis_weights(l.u), l.h, cols),
@@ -118,24 +128,19 @@ impl Lowering {
             let mut value = 0.0;
             l.for_each_slot(cols, rows, |i, q, r| {
                 let weight = wu[q] * wv[r];
-                entries[fill[i]] = Entry {
+                let inverse_bound = 1.0 / (mu[q] * mv[r]).max(1e-12);
+                self.entries[next[i]] = Entry {
                     row: row as u32,
                     weight,
-                    inverse_bound: 1.0 / (mu[q] * mv[r]).max(1e-12),
+                    inverse_bound,
                 };
-                fill[i] += 1;
+                next[i] += 1;
                 value += weight * surface.coefficients[i];
                 if kept {
-                    floor[i] = floor[i].min(c.height);
+                    self.floor[i] = self.floor[i].min(c.height);
                 }
             });
-            gap.push(value - c.height);
-        }
-        Self {
-            start,
-            entries,
-            gap,
-            floor,
+            self.gap.push(value - c.height);
         }
     }
 
@@ -149,11 +154,7 @@ impl Lowering {
             if !(room > 0.0 && room.is_finite()) {
                 continue;
             }
-            let mut delta = room;
-            for e in column {
-                delta = delta.min(self.gap[e.row as usize].max(0.0) * e.inverse_bound);
-            }
-            let delta = step * delta;
+            let delta = step * largest_safe_move(column, &self.gap, room);
             if delta > 0.0 {
                 surface.coefficients[i] -= delta;
                 column
@@ -164,6 +165,39 @@ impl Lowering {
         }
         moves
     }
+}
+
+/// `min(room, min_i gap_i / bound_i)` over a column (`<= 0` when a candidate is
+/// already tight or short). Four running minima break the dependency chain of a
+/// single one, which would otherwise bound the whole pass by its latency.
+#[inline]
+fn largest_safe_move(column: &[Entry], gap: &[f64], room: f64) -> f64 {
+    let mut lows = [room; 4];
+    let chunks = column.chunks_exact(4);
+    for e in chunks.remainder() {
+        lows[0] = lows[0].min(gap[e.row as usize] * e.inverse_bound);
+    }
+    for chunk in chunks {
+        for (low, e) in lows.iter_mut().zip(chunk) {
+            let v = gap[e.row as usize] * e.inverse_bound;
+            if v < *low {
+                *low = v;
+            }
+        }
+    }
+    lows[0].min(lows[1]).min(lows[2].min(lows[3]))
+}
+
+/// `start[i]..start[i + 1]`: where coefficient `i`'s entries go (a counting pass).
+fn column_starts(located: &[Located], cols: usize, rows: usize) -> Vec<usize> {
+    let mut start = vec![0usize; cols * rows + 1];
+    for l in located {
+        l.for_each_slot(cols, rows, |i, _, _| start[i + 1] += 1);
+    }
+    for i in 0..cols * rows {
+        start[i + 1] += start[i];
+    }
+    start
 }
 
 /// Where a candidate lies: its cell, local parameters and sub-cell.

@@ -37,7 +37,9 @@ pub fn fit_curve_by_trial_and_error(
     loop {
         interpolate(samples, &selection, &mut b)?;
         solves += 1;
-        let curve = UniformCubicCurve { coefficients: b.clone() };
+        let curve = UniformCubicCurve {
+            coefficients: b.clone(),
+        };
         let worst = samples
             .iter()
             .enumerate()
@@ -47,17 +49,31 @@ pub fn fit_curve_by_trial_and_error(
             Some((i, excess)) if excess > 1e-12 => {
                 let j = window(samples[i].0);
                 if selection[j] == Some(i) || solves >= max_solves {
-                    return Ok(TrialAndErrorFit { curve, solves, converged: false });
+                    return Ok(TrialAndErrorFit {
+                        curve,
+                        solves,
+                        converged: false,
+                    });
                 }
                 selection[j] = Some(i);
             }
-            _ => return Ok(TrialAndErrorFit { curve, solves, converged: true }),
+            _ => {
+                return Ok(TrialAndErrorFit {
+                    curve,
+                    solves,
+                    converged: true,
+                })
+            }
         }
     }
 }
 
 /// Solves `f(s_j) = y_j` (rows of eq. 2) with `Δ_j b = 0` for empty windows.
-fn interpolate(samples: &[(f64, f64)], selection: &[Option<usize>], b: &mut [f64]) -> Result<(), FitError> {
+fn interpolate(
+    samples: &[(f64, f64)],
+    selection: &[Option<usize>],
+    b: &mut [f64],
+) -> Result<(), FitError> {
     let n = b.len();
     let mut m = BandedMatrix::<2, 2>::zeros(n);
     for (j, sel) in selection.iter().enumerate() {
@@ -90,12 +106,22 @@ mod tests {
 
     #[test]
     fn converges_on_smooth_data_and_reports_failure_otherwise() {
-        let smooth: Vec<(f64, f64)> = (0..200).map(|i| { let s = i as f64 * 0.045; (s, (s * 0.8).sin()) }).collect();
+        let smooth: Vec<(f64, f64)> = (0..200)
+            .map(|i| {
+                let s = i as f64 * 0.045;
+                (s, (s * 0.8).sin())
+            })
+            .collect();
         let fit = fit_curve_by_trial_and_error(&smooth, 10, 100).unwrap();
         if fit.converged {
             assert!(smooth.iter().all(|&(s, y)| fit.curve.eval(s) >= y - 1e-9));
         }
-        let step: Vec<(f64, f64)> = (0..200).map(|i| { let s = i as f64 * 0.045; (s, if s > 4.5 { 5.0 } else { 0.0 }) }).collect();
+        let step: Vec<(f64, f64)> = (0..200)
+            .map(|i| {
+                let s = i as f64 * 0.045;
+                (s, if s > 4.5 { 5.0 } else { 0.0 })
+            })
+            .collect();
         let fit = fit_curve_by_trial_and_error(&step, 10, 50).unwrap();
         // A jump makes the interpolant overshoot and undershoot (Gibbs): the
         // baseline either converges or says it did not; it never claims safety falsely.

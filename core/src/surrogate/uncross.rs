@@ -7,7 +7,11 @@ use super::trim::TrimMask;
 use crate::spline::UniformCubicSurface;
 
 /// Adjusts coefficients acting on kept cells; returns how many pairs moved.
-pub fn uncross(upper: &mut UniformCubicSurface, lower: &mut UniformCubicSurface, trim: &TrimMask) -> u64 {
+pub fn uncross(
+    upper: &mut UniformCubicSurface,
+    lower: &mut UniformCubicSurface,
+    trim: &TrimMask,
+) -> u64 {
     let (cs, ct) = upper.cells();
     let mut moved = 0;
     for k in 0..upper.rows {

@@ -51,8 +51,18 @@ mod tests {
 
     #[test]
     fn hull_of_a_cap() {
-        let pts = [(0.0, 0.0), (0.25, 0.5), (0.5, 0.2), (0.5, 0.9), (0.75, 0.5), (1.0, 0.0)];
-        assert_eq!(upper_hull(&pts), vec![(0.0, 0.0), (0.25, 0.5), (0.5, 0.9), (0.75, 0.5), (1.0, 0.0)]);
+        let pts = [
+            (0.0, 0.0),
+            (0.25, 0.5),
+            (0.5, 0.2),
+            (0.5, 0.9),
+            (0.75, 0.5),
+            (1.0, 0.0),
+        ];
+        assert_eq!(
+            upper_hull(&pts),
+            vec![(0.0, 0.0), (0.25, 0.5), (0.5, 0.9), (0.75, 0.5), (1.0, 0.0)]
+        );
         let line = [(0.0, 0.0), (0.5, 0.5), (1.0, 1.0)];
         assert_eq!(upper_hull(&line), vec![(0.0, 0.0), (1.0, 1.0)]);
         assert_eq!(upper_hull(&[(2.0, 1.0)]), vec![(2.0, 1.0)]);
@@ -60,10 +70,12 @@ mod tests {
 
     #[test]
     fn every_point_is_below_the_hull() {
-        let mut pts: Vec<(f64, f64)> = (0..200).map(|i| {
-            let x = ((i * 7919) % 200) as f64 / 200.0;
-            (x, ((i * 104729) % 97) as f64 / 97.0 - x * x)
-        }).collect();
+        let mut pts: Vec<(f64, f64)> = (0..200)
+            .map(|i| {
+                let x = ((i * 7919) % 200) as f64 / 200.0;
+                (x, ((i * 104729) % 97) as f64 / 97.0 - x * x)
+            })
+            .collect();
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let hull = upper_hull(&pts);
         for &(x, y) in &pts {

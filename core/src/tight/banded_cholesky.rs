@@ -64,7 +64,7 @@ impl BandedSpd {
     /// (Cholesky-Banachiewicz). Entries of a row are computed four at a time: the
     /// four dot products share their stretch of row `i` (one load feeds four
     /// multiply-adds), and only the small triangle inside the block is sequential.
-    /// Near-zero pivots are frozen (see [`PIVOT_TOLERANCE`]); a clearly negative one
+    /// Near-zero pivots are frozen (see `PIVOT_TOLERANCE`); a clearly negative one
     /// means the matrix is not positive semi-definite.
     pub fn factor(&mut self) -> Result<(), LpError> {
         let (n, bw, stride) = (self.n, self.bw, self.bw + 1);
@@ -218,7 +218,12 @@ mod tests {
         let dense = dense_spd(n, bw);
         let mut band = BandedSpd::zeros(n, bw);
         for (i, row) in dense.iter().enumerate() {
-            for (j, &value) in row.iter().enumerate().take(i + 1).skip(i.saturating_sub(bw)) {
+            for (j, &value) in row
+                .iter()
+                .enumerate()
+                .take(i + 1)
+                .skip(i.saturating_sub(bw))
+            {
                 band.add(i, j, value);
             }
         }

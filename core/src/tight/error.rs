@@ -20,6 +20,8 @@ pub enum LpError {
     },
     #[error("the normal equations lost definiteness at unknown {0} (the LP is degenerate beyond repair)")]
     NotPositiveDefinite(usize),
+    #[error("the starting point has {got} values but the LP has {expected} unknowns")]
+    StartLength { expected: usize, got: usize },
     #[error(
         "the LP has {unknowns} unknowns with half-bandwidth {bandwidth}: too large for the banded \
          interior-point method (about {flops:e} multiply-adds per factorisation)"

@@ -10,7 +10,7 @@
 //!   the points in it;
 //! * a piece of a kept triangle without points takes the lowest level the LP
 //!   optimum may reach over its cell: the least floor (see
-//!   [`super::lp::floors_of`], from the fitter's candidates) of the 16
+//!   [`super::bounds::floors_of`], from the fitter's candidates) of the 16
 //!   coefficients acting on the cell. By the convex hull property the optimum
 //!   never dips below it, so empty pieces never count negative for it;
 //! * the surface is integrated exactly over each kept piece, so the excess is
@@ -19,8 +19,9 @@
 //!
 //! Reported in world units (parameter area times `u_step * v_step`).
 
+use super::bounds::floors_of;
 use super::cloud_side::CloudSide;
-use super::lp::{cell_slots, floors_of, group_by_cell};
+use super::lp::{cell_slots, group_by_cell};
 use super::lp_reference::candidate_indices;
 use super::quadrature::{corners, triangle_moments, Moments, TRIANGLES};
 use crate::spline::{knot_interval, UniformCubicSurface};

@@ -3,7 +3,11 @@
 //! sense). `f` is linear in the coefficients and each constraint row has at most
 //! 16 non-zeros: `basis_weights(u) x basis_weights(v)` on the 4 x 4 coefficients
 //! of the constraint's cell (Section 2, eq. (1), in tensor form).
+//!
+//! Two bounds make the LP well posed where data is sparse (see [`super::bounds`]);
+//! neither binds where data is dense.
 
+use super::bounds::{ceiling_of, floors_of};
 use super::error::LpError;
 use super::objective::{clamp_index, objective_weights};
 use crate::spline::{basis_weights, knot_interval, UniformCubicSurface};
@@ -30,9 +34,9 @@ pub struct SplineLp {
     pub coefficient_of: Vec<usize>,
     /// Objective weight of each unknown.
     pub cost: Vec<f64>,
-    /// Lower bound of each unknown (see [`floors_of`]).
+    /// Lower bound of each unknown (see [`super::bounds::floors_of`]).
     pub floors: Vec<f64>,
-    /// Upper bound shared by the unknowns (see [`ceiling_of`]).
+    /// Upper bound shared by the unknowns (see [`super::bounds::ceiling_of`]).
     pub ceiling: f64,
     /// Half-bandwidth of `A^T D A` in the unknowns' order.
     pub bandwidth: usize,
@@ -270,47 +274,6 @@ pub fn row_weights(s: f64, t: f64, cols: usize, rows: usize) -> [f64; 16] {
         }
     }
     w
-}
-
-/// Lower bound of each coefficient: the lowest constraint height in the kept
-/// cells it acts on. The LP needs one: where a kept triangle holds few points, a
-/// spline can vanish at those points and have any negative integral, so the
-/// unbounded optimum would plunge between them. This floor keeps the control net
-/// above the lowest data it acts on, and with it (convex hull property) the
-/// surface above the lowest data within three cells; where data is dense it does
-/// not bind. Coefficients without constraints get `+inf` (they are never unknowns).
-pub fn floors_of(
-    cols: usize,
-    rows: usize,
-    grouped: &[(usize, usize, Vec<Candidate>)],
-    trim: &TrimMask,
-) -> Vec<f64> {
-    let mut floors = vec![f64::INFINITY; cols * rows];
-    for (h, g, list) in grouped.iter().filter(|(h, g, _)| trim.cell_kept(*h, *g)) {
-        let lowest = list.iter().fold(f64::INFINITY, |m, c| m.min(c.height));
-        for i in cell_slots(*h, *g, cols, rows) {
-            floors[i] = floors[i].min(lowest);
-        }
-    }
-    floors
-}
-
-/// Upper bound of every coefficient: the highest constraint plus the height range
-/// of the constraints. It never binds where data is dense (an optimal surface does
-/// not overshoot its data by a whole range), but without it a coefficient whose
-/// support barely touches the kept region (tiny objective weight) can be sent
-/// arbitrarily high to let its neighbours drop, which leaves the LP nearly
-/// unbounded and badly conditioned.
-pub fn ceiling_of(constraints: &[Candidate]) -> f64 {
-    let (lo, hi) = constraints
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| {
-            (a.min(c.height), b.max(c.height))
-        });
-    if !hi.is_finite() {
-        return f64::INFINITY;
-    }
-    hi + (hi - lo).max(1e-3 * (1.0 + hi.abs().max(lo.abs())))
 }
 
 /// Constraints grouped by cell `(h, g)`, cells in row-major order.

@@ -5,18 +5,36 @@
 use super::{alloc, median, timed, BenchArgs};
 use anyhow::Result;
 use shroud_core::surrogate::{
-    fit_curve_above, fit_curve_by_trial_and_error, FitOptions, Histogram, SurrogateFitter, Tightness,
+    fit_curve_above, fit_curve_by_trial_and_error, FitOptions, Histogram, SurrogateFitter,
+    Tightness,
 };
 use shroud_sim::MovingSpheres;
 
 /// Table 1 of the paper: milliseconds on a 2.4 GHz Pentium 4, 20 x 20.
-const TABLE1: [(usize, f64); 5] = [(10_000, 14.5), (30_000, 42.5), (50_000, 71.0), (100_000, 141.0), (300_000, 445.0)];
+const TABLE1: [(usize, f64); 5] = [
+    (10_000, 14.5),
+    (30_000, 42.5),
+    (50_000, 71.0),
+    (100_000, 141.0),
+    (300_000, 445.0),
+];
 /// Table 2 of the paper: milliseconds for N = 30K and an n x n spline.
-const TABLE2: [(usize, f64); 6] = [(10, 42.5), (20, 42.5), (30, 45.0), (40, 51.0), (50, 55.5), (60, 64.5)];
+const TABLE2: [(usize, f64); 6] = [
+    (10, 42.5),
+    (20, 42.5),
+    (30, 45.0),
+    (40, 51.0),
+    (50, 55.5),
+    (60, 64.5),
+];
 
 /// One configuration of the paper's scene: seed and time both vary.
 fn cloud(points: usize, config: usize) -> Result<Vec<[f32; 3]>> {
-    let scene = MovingSpheres { points, seed: 1000 + config as u64, ..Default::default() };
+    let scene = MovingSpheres {
+        points,
+        seed: 1000 + config as u64,
+        ..Default::default()
+    };
     Ok(scene.generate(0.37 * config as f64)?)
 }
 
@@ -30,13 +48,25 @@ struct Timings {
 
 /// Median cold-fit times over `configs x runs` fits, plus a warm-started stream.
 fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
-    let (configs, runs) = if args.quick { (2, 3) } else { (args.configs.max(1), args.runs.max(1)) };
-    let options = |tightness| FitOptions { cols: grid, rows: grid, tightness, ..Default::default() };
+    let (configs, runs) = if args.quick {
+        (2, 3)
+    } else {
+        (args.configs.max(1), args.runs.max(1))
+    };
+    let options = |tightness| FitOptions {
+        cols: grid,
+        rows: grid,
+        tightness,
+        ..Default::default()
+    };
     let (mut default, mut plain, mut tight, mut warm) = (vec![], vec![], vec![], vec![]);
     let mut extra_bytes = 0;
     for config in 0..configs {
         let pts = cloud(points, config)?;
-        for (tightness, out) in [(Tightness::Lowered, &mut default), (Tightness::Plain, &mut plain)] {
+        for (tightness, out) in [
+            (Tightness::Lowered, &mut default),
+            (Tightness::Plain, &mut plain),
+        ] {
             for _ in 0..runs {
                 let mut fitter = SurrogateFitter::new(options(tightness))?;
                 let before = alloc::live_bytes();
@@ -66,8 +96,16 @@ fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
 
 /// A 30 Hz stream of frames fitted by one warm-started fitter.
 fn warm_stream(points: usize, grid: usize, config: usize, frames: usize) -> Result<Vec<f64>> {
-    let scene = MovingSpheres { points, seed: 1000 + config as u64, ..Default::default() };
-    let mut fitter = SurrogateFitter::new(FitOptions { cols: grid, rows: grid, ..Default::default() })?;
+    let scene = MovingSpheres {
+        points,
+        seed: 1000 + config as u64,
+        ..Default::default()
+    };
+    let mut fitter = SurrogateFitter::new(FitOptions {
+        cols: grid,
+        rows: grid,
+        ..Default::default()
+    })?;
     let mut times = Vec::with_capacity(frames);
     for frame in 0..=frames {
         let pts = scene.generate(0.37 * config as f64 + frame as f64 / 30.0)?;
@@ -82,7 +120,10 @@ fn warm_stream(points: usize, grid: usize, config: usize, frames: usize) -> Resu
 
 fn certified(s: &shroud_core::surrogate::Surrogate) -> Result<()> {
     for surface in s.surfaces() {
-        anyhow::ensure!(surface.certificate.violations == 0, "uncertified surrogate in the benchmark");
+        anyhow::ensure!(
+            surface.certificate.violations == 0,
+            "uncertified surrogate in the benchmark"
+        );
     }
     Ok(())
 }
@@ -132,7 +173,10 @@ fn table2(args: &BenchArgs) -> Result<()> {
             continue;
         }
         let t = measure(30_000, n, args)?;
-        println!("| {n} | {paper} | {:.2} | {:.2} | {:.2} | {:.2} |", t.default_ms, t.plain_ms, t.tight_ms, t.warm_ms);
+        println!(
+            "| {n} | {paper} | {:.2} | {:.2} | {:.2} | {:.2} |",
+            t.default_ms, t.plain_ms, t.tight_ms, t.warm_ms
+        );
     }
     println!();
     Ok(())
@@ -143,12 +187,20 @@ fn figure9(args: &BenchArgs) -> Result<()> {
     println!("## Figure 9: solves (LDL decompositions) of Heuristic(σ, b, λ) per line, 20 x 20\n");
     println!("| N | cold: histogram (solves: lines) | cold mean | warm mean | max |");
     println!("|---:|---|---:|---:|---:|");
-    let sizes: &[usize] = if args.quick { &[30_000] } else { &[30_000, 300_000] };
+    let sizes: &[usize] = if args.quick {
+        &[30_000]
+    } else {
+        &[30_000, 300_000]
+    };
     for &n in sizes {
         let (mut cold, mut warm) = (Histogram::default(), Histogram::default());
         let configs = if args.quick { 2 } else { args.configs.max(1) };
         for config in 0..configs {
-            let scene = MovingSpheres { points: n, seed: 1000 + config as u64, ..Default::default() };
+            let scene = MovingSpheres {
+                points: n,
+                seed: 1000 + config as u64,
+                ..Default::default()
+            };
             let mut streaming = SurrogateFitter::new(FitOptions::default())?;
             for frame in 0..10 {
                 let pts = scene.generate(0.37 * config as f64 + frame as f64 / 30.0)?;
@@ -160,9 +212,21 @@ fn figure9(args: &BenchArgs) -> Result<()> {
                 }
             }
         }
-        let bars: Vec<String> =
-            cold.counts.iter().enumerate().filter(|(_, c)| **c > 0).map(|(v, c)| format!("{v}: {c}")).collect();
-        println!("| {}K | {} | {:.2} | {:.2} | {} |", n / 1000, bars.join(", "), cold.mean(), warm.mean(), cold.max().max(warm.max()));
+        let bars: Vec<String> = cold
+            .counts
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| **c > 0)
+            .map(|(v, c)| format!("{v}: {c}"))
+            .collect();
+        println!(
+            "| {}K | {} | {:.2} | {:.2} | {} |",
+            n / 1000,
+            bars.join(", "),
+            cold.mean(),
+            warm.mean(),
+            cold.max().max(warm.max())
+        );
     }
     println!();
     Ok(())
@@ -177,8 +241,13 @@ fn baseline(args: &BenchArgs) -> Result<()> {
     let mut converged = 0;
     for config in 0..clouds {
         let pts = cloud(2_000, config)?;
-        let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[0] as f64), b.max(p[0] as f64)));
-        let samples: Vec<(f64, f64)> = pts.iter().map(|p| ((p[0] as f64 - lo) / (hi - lo) * 19.0, p[2] as f64)).collect();
+        let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| {
+            (a.min(p[0] as f64), b.max(p[0] as f64))
+        });
+        let samples: Vec<(f64, f64)> = pts
+            .iter()
+            .map(|p| ((p[0] as f64 - lo) / (hi - lo) * 19.0, p[2] as f64))
+            .collect();
         let (te, ms) = timed(|| fit_curve_by_trial_and_error(&samples, 20, 200));
         let te = te?;
         te_ms.push(ms);
@@ -190,8 +259,16 @@ fn baseline(args: &BenchArgs) -> Result<()> {
     }
     println!("| method | converged (safe) | median solves | median time (ms) |");
     println!("|---|---:|---:|---:|");
-    println!("| Section 3 trial-and-error | {converged} / {clouds} | {:.0} | {:.3} |", median(&mut te_solves), median(&mut te_ms));
-    println!("| Section 5 Heuristic(σ, b, λ) | {clouds} / {clouds} | {:.0} | {:.3} |", median(&mut h_solves), median(&mut h_ms));
+    println!(
+        "| Section 3 trial-and-error | {converged} / {clouds} | {:.0} | {:.3} |",
+        median(&mut te_solves),
+        median(&mut te_ms)
+    );
+    println!(
+        "| Section 5 Heuristic(σ, b, λ) | {clouds} / {clouds} | {:.0} | {:.3} |",
+        median(&mut h_solves),
+        median(&mut h_ms)
+    );
     println!();
     Ok(())
 }

@@ -24,15 +24,32 @@ pub struct DemoArgs {
 }
 
 pub fn run(args: DemoArgs) -> Result<()> {
-    anyhow::ensure!(args.rate.is_finite() && args.rate > 0.0, "--rate must be a positive number of frames per second");
-    anyhow::ensure!(args.seconds.is_finite() && args.seconds >= 0.0, "--seconds must be a non-negative number");
+    anyhow::ensure!(
+        args.rate.is_finite() && args.rate > 0.0,
+        "--rate must be a positive number of frames per second"
+    );
+    anyhow::ensure!(
+        args.seconds.is_finite() && args.seconds >= 0.0,
+        "--seconds must be a non-negative number"
+    );
     let (cols, rows) = crate::parse::grid(&args.grid)?;
-    let scene = MovingSpheres { points: args.points, ..Default::default() };
-    let mut fitter = SurrogateFitter::new(FitOptions { cols, rows, sides: Sides::Sandwich, ..Default::default() })?;
+    let scene = MovingSpheres {
+        points: args.points,
+        ..Default::default()
+    };
+    let mut fitter = SurrogateFitter::new(FitOptions {
+        cols,
+        rows,
+        sides: Sides::Sandwich,
+        ..Default::default()
+    })?;
     let period = Duration::from_secs_f64(1.0 / args.rate);
     let start = Instant::now();
     let (mut fit_ms, mut frames, mut next_report) = (Vec::new(), 0u64, 1.0);
-    println!("shroud demo: {} moving-sphere points at {} Hz, {}x{} sandwich, {} s", args.points, args.rate, cols, rows, args.seconds);
+    println!(
+        "shroud demo: {} moving-sphere points at {} Hz, {}x{} sandwich, {} s",
+        args.points, args.rate, cols, rows, args.seconds
+    );
     while start.elapsed().as_secs_f64() < args.seconds {
         let tick = Instant::now();
         let points = scene.generate(start.elapsed().as_secs_f64())?;
@@ -58,8 +75,15 @@ fn summary(now: f64, frames: u64, fit_ms: &mut Vec<f64>, s: &Surrogate) -> Strin
         .surfaces()
         .map(|x| {
             let c = &x.certificate;
-            format!("{:?} {} pts {} viol min gap {:.2e}", c.side, c.points_checked, c.violations, c.min_gap).to_lowercase()
+            format!(
+                "{:?} {} pts {} viol min gap {:.2e}",
+                c.side, c.points_checked, c.violations, c.min_gap
+            )
+            .to_lowercase()
         })
         .collect();
-    format!("t={now:5.1}s frame {frames:5} {rate:4.0} Hz fit p50 {p50:6.2} ms | {}", certs.join(" | "))
+    format!(
+        "t={now:5.1}s frame {frames:5} {rate:4.0} Hz fit p50 {p50:6.2} ms | {}",
+        certs.join(" | ")
+    )
 }

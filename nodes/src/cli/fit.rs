@@ -4,7 +4,9 @@ use crate::{files, parse};
 use anyhow::{Context, Result};
 use clap::Args;
 use shroud_core::format;
-use shroud_core::surrogate::{Certificate, FitOptions, Sides, Surrogate, SurrogateFitter, Tightness};
+use shroud_core::surrogate::{
+    Certificate, FitOptions, Sides, Surrogate, SurrogateFitter, Tightness,
+};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -54,7 +56,9 @@ pub fn run(args: FitArgs) -> Result<()> {
     let options = options(&args)?;
     let points = files::read_cloud(&args.input)?;
     let start = Instant::now();
-    let surrogate = SurrogateFitter::new(options)?.fit(&points).context("fit failed")?;
+    let surrogate = SurrogateFitter::new(options)?
+        .fit(&points)
+        .context("fit failed")?;
     let elapsed_ms = start.elapsed().as_secs_f64() * 1e3;
     if let Some(path) = &args.output {
         files::write_surrogate(path, &surrogate)?;
@@ -91,7 +95,11 @@ fn write_mesh(path: &std::path::Path, surrogate: &Surrogate, per_cell: usize) ->
     let bytes = match path.extension().and_then(|e| e.to_str()) {
         Some("obj") => mesh.to_obj(),
         Some("ply") => mesh.to_ply(false),
-        other => anyhow::bail!("{}: mesh extension {:?} is not .obj or .ply", path.display(), other.unwrap_or("")),
+        other => anyhow::bail!(
+            "{}: mesh extension {:?} is not .obj or .ply",
+            path.display(),
+            other.unwrap_or("")
+        ),
     };
     files::write(path, &bytes)
 }
@@ -121,7 +129,11 @@ fn report(args: &FitArgs, s: &Surrogate, elapsed_ms: f64) {
         println!("{}", certificate_line(&surface.certificate));
     }
     let total = 4 * s.trim.cells_s * s.trim.cells_t;
-    println!("trim: {} of {} cell triangles kept", s.trim.kept_triangles(), total);
+    println!(
+        "trim: {} of {} cell triangles kept",
+        s.trim.kept_triangles(),
+        total
+    );
 }
 
 /// One line a person reads, with every field of the certificate.

@@ -9,7 +9,11 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 #[derive(Debug, Parser)]
-#[command(name = "shroud", version, about = "Safe spline surrogates for live point clouds")]
+#[command(
+    name = "shroud",
+    version,
+    about = "Safe spline surrogates for live point clouds"
+)]
 pub struct Cli {
     /// Log filter (tracing env-filter syntax), e.g. `info` or `shroud=debug`.
     #[arg(long, global = true, default_value = "warn")]

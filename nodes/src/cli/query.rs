@@ -5,7 +5,9 @@ use crate::{files, parse};
 use anyhow::{bail, Result};
 use clap::Args;
 use glam::DVec3;
-use shroud_core::query::{BoundOptions, BoundQuery, Classify, PointClass, Ray, RayCast, SurrogateView, UvRect};
+use shroud_core::query::{
+    BoundOptions, BoundQuery, Classify, PointClass, Ray, RayCast, SurrogateView, UvRect,
+};
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]
@@ -41,7 +43,10 @@ pub fn run(args: QueryArgs) -> Result<()> {
     }
     if let Some(text) = &args.ray {
         let [ox, oy, oz, dx, dy, dz] = parse::numbers::<6>(text, "ray")?;
-        let ray = Ray { origin: DVec3::new(ox, oy, oz), direction: DVec3::new(dx, dy, dz) };
+        let ray = Ray {
+            origin: DVec3::new(ox, oy, oz),
+            direction: DVec3::new(dx, dy, dz),
+        };
         match view.first_hit(&ray, args.max_distance)? {
             Some(hit) => println!(
                 "ray {text}: hit the {:?} surface at distance {:.6} point ({:.6}, {:.6}, {:.6}) normal ({:.4}, {:.4}, {:.4})",
@@ -52,10 +57,24 @@ pub fn run(args: QueryArgs) -> Result<()> {
     }
     if let Some(text) = &args.bound {
         let [u0, v0, u1, v1] = parse::numbers::<4>(text, "bound rectangle")?;
-        let options = BoundOptions { refine: args.refine, ..Default::default() };
+        let options = BoundOptions {
+            refine: args.refine,
+            ..Default::default()
+        };
         for side in view.sides() {
-            match side.range_over_uv(UvRect { u: [u0, u1], v: [v0, v1] }, options)? {
-                Some(r) => println!("bound {text}: {:?} surface within [{:.6}, {:.6}]", side.side(), r.min, r.max),
+            match side.range_over_uv(
+                UvRect {
+                    u: [u0, u1],
+                    v: [v0, v1],
+                },
+                options,
+            )? {
+                Some(r) => println!(
+                    "bound {text}: {:?} surface within [{:.6}, {:.6}]",
+                    side.side(),
+                    r.min,
+                    r.max
+                ),
                 None => println!("bound {text}: {:?} surface absent there", side.side()),
             }
         }
@@ -69,7 +88,10 @@ fn describe(class: PointClass) -> String {
         PointClass::Trimmed => "over a trimmed-out part of the domain (no data there)".into(),
         PointClass::Above { gap } => format!("above the surrogate by {gap:.6}"),
         PointClass::Below { gap } => format!("below the surrogate by {gap:.6}"),
-        PointClass::Between { above_lower, below_upper } => {
+        PointClass::Between {
+            above_lower,
+            below_upper,
+        } => {
             format!("between the surfaces ({above_lower:.6} above the lower, {below_upper:.6} below the upper)")
         }
     }

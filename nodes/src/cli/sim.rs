@@ -29,13 +29,21 @@ pub struct SimArgs {
 pub fn run(args: SimArgs) -> Result<()> {
     let scene = match &args.config {
         Some(path) => {
-            let text = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-            serde_json::from_slice::<Scene>(&text).with_context(|| format!("bad scene configuration {}", path.display()))?
+            let text =
+                std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+            serde_json::from_slice::<Scene>(&text)
+                .with_context(|| format!("bad scene configuration {}", path.display()))?
         }
         None => Scene::by_name(&args.scene, args.points, args.seed)?,
     };
     let points = scene.generate(args.time)?;
     files::write_cloud(&args.output, &points)?;
-    println!("wrote {} points of {} (t = {}) to {}", points.len(), scene.name(), args.time, args.output.display());
+    println!(
+        "wrote {} points of {} (t = {}) to {}",
+        points.len(),
+        scene.name(),
+        args.time,
+        args.output.display()
+    );
     Ok(())
 }

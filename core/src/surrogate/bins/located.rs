@@ -11,14 +11,16 @@ pub(crate) const BLOCK: usize = 64;
 /// `(s, t, w)` of up to [`BLOCK`] points with their knot intervals `(h, g)` and
 /// local coordinates `(u, v)`, exactly as `Locator::locate_f32` and
 /// `knot_interval` compute them (same operations, same order, so the same bits).
+/// The interval indices stay floats (exact small integers): users combine them
+/// into one index and convert once, as conversions do not vectorise well.
 #[derive(Clone)]
 pub(crate) struct LocatedBlock {
     pub len: usize,
     pub s: [f64; BLOCK],
     pub t: [f64; BLOCK],
     pub w: [f64; BLOCK],
-    pub h: [u32; BLOCK],
-    pub g: [u32; BLOCK],
+    pub h: [f64; BLOCK],
+    pub g: [f64; BLOCK],
     pub u: [f64; BLOCK],
     pub v: [f64; BLOCK],
 }
@@ -30,8 +32,8 @@ impl Default for LocatedBlock {
             s: [0.0; BLOCK],
             t: [0.0; BLOCK],
             w: [0.0; BLOCK],
-            h: [0; BLOCK],
-            g: [0; BLOCK],
+            h: [0.0; BLOCK],
+            g: [0.0; BLOCK],
             u: [0.0; BLOCK],
             v: [0.0; BLOCK],
         }
@@ -54,8 +56,7 @@ impl LocatedBlock {
         for i in 0..BLOCK {
             let (h, u) = knot_interval_f(self.s[i], s_last, s_cell);
             let (g, v) = knot_interval_f(self.t[i], t_last, t_cell);
-            (self.u[i], self.v[i]) = (u, v);
-            (self.h[i], self.g[i]) = (small_integer(h), small_integer(g));
+            (self.u[i], self.v[i], self.h[i], self.g[i]) = (u, v, h, g);
         }
     }
 }
@@ -97,7 +98,14 @@ mod tests {
     #[test]
     fn blocks_match_the_scalar_locate_and_knot_interval() {
         let frame = Frame::from_direction(DVec3::new(0.3, -0.2, -1.0)).unwrap();
-        let domain = Domain { u_min: -1.5, v_min: -1.25, u_step: 0.17, v_step: 0.23, cols: 20, rows: 13 };
+        let domain = Domain {
+            u_min: -1.5,
+            v_min: -1.25,
+            u_step: 0.17,
+            v_step: 0.23,
+            cols: 20,
+            rows: 13,
+        };
         let locator = domain.locator(&frame);
         let points: Vec<[f32; 3]> = (0..200)
             .map(|i| {
@@ -115,8 +123,8 @@ mod tests {
                 assert_eq!((block.s[i], block.t[i], block.w[i]), (s, t, w));
                 let (h, u) = knot_interval(s, domain.cols);
                 let (g, v) = knot_interval(t, domain.rows);
-                assert_eq!((block.h[i] as usize, block.u[i]), (h, u));
-                assert_eq!((block.g[i] as usize, block.v[i]), (g, v));
+                assert_eq!((small_integer(block.h[i]) as usize, block.u[i]), (h, u));
+                assert_eq!((small_integer(block.g[i]) as usize, block.v[i]), (g, v));
             }
         }
     }

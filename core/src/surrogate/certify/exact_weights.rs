@@ -76,7 +76,11 @@ mod tests {
         // Multiples of 6 and their neighbours are the usual hard cases.
         for k in 0..100_000u64 {
             let x = 6.0 * k as f64;
-            for y in [x, f64::from_bits(x.to_bits() + 1), f64::from_bits(x.to_bits().saturating_sub(1))] {
+            for y in [
+                x,
+                f64::from_bits(x.to_bits() + 1),
+                f64::from_bits(x.to_bits().saturating_sub(1)),
+            ] {
                 assert_eq!(div6(y).to_bits(), (y / 6.0).to_bits(), "x = {y:e}");
             }
         }

@@ -14,6 +14,8 @@ pub struct PaddedSurface {
     /// At `g * stride + h`: the largest `|coefficient|` of cell `(h, g)`, the
     /// scale of the rounding error of any evaluation there.
     pub(super) scale: Vec<f64>,
+    /// The largest of `scale`.
+    pub(super) max_scale: f64,
 }
 
 impl PaddedSurface {
@@ -25,16 +27,31 @@ impl PaddedSurface {
                 data.push(surface.coefficient(j, k));
             }
         }
+        // The largest |coefficient| of each 4 x 4 block, separably: along rows,
+        // then down columns.
+        let row_max: Vec<f64> = (0..data.len())
+            .map(|i| {
+                data[i..(i + 4).min(data.len())]
+                    .iter()
+                    .fold(0.0f64, |m, c| m.max(c.abs()))
+            })
+            .collect();
         let mut scale = vec![0.0; data.len()];
         for g in 0..surface.rows - 1 {
             for h in 0..surface.cols - 1 {
                 let first = g * stride + h;
-                scale[first] = (0..4)
-                    .flat_map(|r| data[first + r * stride..first + r * stride + 4].iter())
-                    .fold(0.0f64, |m, c| m.max(c.abs()));
+                scale[first] = (0..4).fold(0.0f64, |m, r| m.max(row_max[first + r * stride]));
             }
         }
-        Self { cols: surface.cols, rows: surface.rows, stride, data, scale }
+        let max_scale = scale.iter().fold(0.0f64, |m, &c| m.max(c));
+        Self {
+            cols: surface.cols,
+            rows: surface.rows,
+            stride,
+            data,
+            scale,
+            max_scale,
+        }
     }
 
     /// Same value as `UniformCubicSurface::eval`, bit for bit (same operation order).
@@ -60,11 +77,40 @@ mod tests {
     use super::*;
 
     #[test]
+    fn cell_scales_are_the_largest_coefficient_of_each_cell() {
+        let b: Vec<f64> = (0..42).map(|i| ((i * 29) % 13) as f64 - 6.5).collect();
+        let surf = UniformCubicSurface::new(7, 6, b).unwrap();
+        let p = PaddedSurface::new(&surf);
+        let mut largest = 0.0f64;
+        for g in 0..5 {
+            for h in 0..6 {
+                let expected = surf
+                    .cell_coefficients(h, g)
+                    .iter()
+                    .flatten()
+                    .fold(0.0f64, |m, c| m.max(c.abs()));
+                assert_eq!(p.scale[g * p.stride + h], expected, "cell ({h}, {g})");
+                largest = largest.max(expected);
+            }
+        }
+        assert_eq!(p.max_scale, largest);
+    }
+
+    #[test]
     fn padded_eval_matches_surface_eval() {
-        let b: Vec<f64> = (0..30).map(|i| ((i * 37) % 11) as f64 * 0.3 - 1.0).collect();
+        let b: Vec<f64> = (0..30)
+            .map(|i| ((i * 37) % 11) as f64 * 0.3 - 1.0)
+            .collect();
         let surf = UniformCubicSurface::new(6, 5, b).unwrap();
         let p = PaddedSurface::new(&surf);
-        for (s, t) in [(0.0, 0.0), (5.0, 4.0), (2.7, 1.3), (4.99, 0.01), (-1.0, 9.0), (f64::NAN, 2.5)] {
+        for (s, t) in [
+            (0.0, 0.0),
+            (5.0, 4.0),
+            (2.7, 1.3),
+            (4.99, 0.01),
+            (-1.0, 9.0),
+            (f64::NAN, 2.5),
+        ] {
             assert_eq!(p.eval(s, t).to_bits(), surf.eval(s, t).to_bits());
         }
     }

@@ -26,13 +26,19 @@ pub(super) fn raise_wrong_points(
     let (cols, rows) = (surface.cols, surface.rows);
     let mut need = vec![0.0f64; surface.coefficients.len()];
     for &(index, excess) in wrong {
-        let point = points.get(index as usize).ok_or(FitError::Uncertifiable(wrong.len()))?;
+        let point = points
+            .get(index as usize)
+            .ok_or(FitError::Uncertifiable(wrong.len()))?;
         let (s, t, w) = locator.locate_f32(point);
         let (h, u) = knot_interval(s, cols);
         let (g, v) = knot_interval(t, rows);
         // The margin the point will be held to: the raise grows the cell's
         // coefficients by at most 16 times the amount (see below).
-        let scale = surface.cell_coefficients(h, g).iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
+        let scale = surface
+            .cell_coefficients(h, g)
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, c| m.max(c.abs()));
         let amount = excess * (1.0 + 1e-9) + rounding_margin(w + excess, scale + 32.0 * excess);
         if !amount.is_finite() {
             return Err(FitError::Uncertifiable(wrong.len()));
@@ -46,16 +52,30 @@ pub(super) fn raise_wrong_points(
         let slot = &mut need[k * cols + j];
         *slot = slot.max(amount / (a * b));
         // Coefficient j acts on cells j-2 ..= j+1.
-        tiles.mark(touched, (j.saturating_sub(2), j + 1), (k.saturating_sub(2), k + 1));
+        tiles.mark(
+            touched,
+            (j.saturating_sub(2), j + 1),
+            (k.saturating_sub(2), k + 1),
+        );
     }
     let sign = side.sign();
-    surface.coefficients.iter_mut().zip(&need).for_each(|(c, n)| *c += sign * n);
+    surface
+        .coefficients
+        .iter_mut()
+        .zip(&need)
+        .for_each(|(c, n)| *c += sign * n);
     Ok(())
 }
 
 /// Index and value of the largest of four weights.
 fn largest(weights: [f64; 4]) -> (usize, f64) {
-    (1..4).fold((0, weights[0]), |best, q| if weights[q] > best.1 { (q, weights[q]) } else { best })
+    (1..4).fold((0, weights[0]), |best, q| {
+        if weights[q] > best.1 {
+            (q, weights[q])
+        } else {
+            best
+        }
+    })
 }
 
 #[cfg(test)]
@@ -68,24 +88,49 @@ mod tests {
     #[test]
     fn a_raise_lifts_the_point_and_touches_only_nearby_tiles() {
         let frame = Frame::from_direction(DVec3::new(0.0, 0.0, -1.0)).unwrap();
-        let domain = Domain { u_min: 0.0, v_min: -12.0, u_step: 1.0, v_step: 1.0, cols: 12, rows: 12 };
+        let domain = Domain {
+            u_min: 0.0,
+            v_min: -12.0,
+            u_step: 1.0,
+            v_step: 1.0,
+            cols: 12,
+            rows: 12,
+        };
         let locator = domain.locator(&frame);
         let tiles = TileGrid::new(11, 11, 1000, 1);
         let points = [[-5.3f32, -6.8, 1.0]];
         let (s, t, w) = locator.locate_f32(&points[0]);
         let (h, g) = (s as usize, t as usize);
-        assert!(s > 1.0 && s < 10.0 && t > 1.0 && t < 10.0 && w == 1.0, "({s}, {t}, {w})");
+        assert!(
+            s > 1.0 && s < 10.0 && t > 1.0 && t < 10.0 && w == 1.0,
+            "({s}, {t}, {w})"
+        );
         let before = UniformCubicSurface::constant(12, 12, 1.0).unwrap();
         for side in [Side::Upper, Side::Lower] {
             let mut surface = before.clone();
             let mut touched = vec![false; tiles.len()];
-            raise_wrong_points(&points, &locator, &mut surface, side, &[(0, 0.25)], &tiles, &mut touched).unwrap();
+            raise_wrong_points(
+                &points,
+                &locator,
+                &mut surface,
+                side,
+                &[(0, 0.25)],
+                &tiles,
+                &mut touched,
+            )
+            .unwrap();
             let gap = side.sign() * (surface.eval(s, t) - before.eval(s, t));
             assert!(gap >= 0.25 + rounding_margin(1.0, 1.0), "gap {gap}");
-            assert_eq!(surface.coefficients.iter().filter(|&&c| c != 1.0).count(), 1);
+            assert_eq!(
+                surface.coefficients.iter().filter(|&&c| c != 1.0).count(),
+                1
+            );
             assert!(touched.iter().filter(|&&t| t).count() <= 16 && touched[g * 11 + h]);
             // Far from the touched tiles the surface did not move.
-            let far = (if s > 5.5 { 0.5 } else { 10.5 }, if t > 5.5 { 0.5 } else { 10.5 });
+            let far = (
+                if s > 5.5 { 0.5 } else { 10.5 },
+                if t > 5.5 { 0.5 } else { 10.5 },
+            );
             assert_eq!(surface.eval(far.0, far.1), before.eval(far.0, far.1));
         }
     }
@@ -93,12 +138,27 @@ mod tests {
     #[test]
     fn a_nan_excess_is_an_error() {
         let frame = Frame::from_direction(DVec3::new(0.0, 0.0, -1.0)).unwrap();
-        let domain = Domain { u_min: 0.0, v_min: 0.0, u_step: 1.0, v_step: 1.0, cols: 4, rows: 4 };
+        let domain = Domain {
+            u_min: 0.0,
+            v_min: 0.0,
+            u_step: 1.0,
+            v_step: 1.0,
+            cols: 4,
+            rows: 4,
+        };
         let tiles = TileGrid::new(3, 3, 10, 1);
         let mut surface = UniformCubicSurface::constant(4, 4, 0.0).unwrap();
         let mut touched = vec![false; tiles.len()];
         let wrong = [(0, f64::NAN)];
-        let result = raise_wrong_points(&[[1.0, 1.0, 1.0]], &domain.locator(&frame), &mut surface, Side::Upper, &wrong, &tiles, &mut touched);
+        let result = raise_wrong_points(
+            &[[1.0, 1.0, 1.0]],
+            &domain.locator(&frame),
+            &mut surface,
+            Side::Upper,
+            &wrong,
+            &tiles,
+            &mut touched,
+        );
         assert_eq!(result, Err(FitError::Uncertifiable(1)));
     }
 }

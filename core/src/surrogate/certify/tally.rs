@@ -3,9 +3,11 @@
 //! be folded in from the touched tiles alone.
 
 use super::gaps::GapBlock;
+use super::padded::PaddedSurface;
 use super::tiles::lower_minima;
-use crate::surrogate::model::{Certificate, Side};
 use crate::math::Frame;
+use crate::surrogate::bins::located::BLOCK;
+use crate::surrogate::model::{Certificate, Side};
 
 /// Gap statistics of every point of a pass.
 #[derive(Debug, Clone, PartialEq)]
@@ -23,37 +25,67 @@ pub(super) struct Tally {
 
 impl Tally {
     pub fn new(tiles: usize) -> Self {
-        Self { count: 0, sum: 0.0, max: f64::NEG_INFINITY, max_tile: 0, minima: vec![f64::INFINITY; tiles], wrong: Vec::new() }
+        Self {
+            count: 0,
+            sum: 0.0,
+            max: f64::NEG_INFINITY,
+            max_tile: 0,
+            minima: vec![f64::INFINITY; tiles],
+            wrong: Vec::new(),
+        }
     }
 
     /// Adds the measured gaps of `block`; `index(i)` is the cloud index of its
     /// point `i`.
     #[inline]
-    pub fn add_block(&mut self, block: &GapBlock, index: impl Fn(usize) -> u32) {
+    pub fn add_block(
+        &mut self,
+        block: &GapBlock,
+        surface: &PaddedSurface,
+        index: impl Fn(usize) -> u32,
+    ) {
         let n = block.located.len;
         self.count += n as u64;
         self.sum += sum_in_lanes(&block.gap[..n]);
-        self.add_extremes(block, index);
+        self.add_extremes(block, surface, index);
     }
 
     /// Like [`Self::add_block`], but sums the change of the gaps since `before`
     /// (the gaps of the same points to the surface before a correction).
     #[inline]
-    pub fn add_changed_block(&mut self, block: &GapBlock, before: &[f64], index: impl Fn(usize) -> u32) {
+    pub fn add_changed_block(
+        &mut self,
+        block: &GapBlock,
+        surface: &PaddedSurface,
+        before: &[f64],
+        index: impl Fn(usize) -> u32,
+    ) {
         let n = block.located.len;
-        let change: Vec<f64> = block.gap[..n].iter().zip(before).map(|(g, b)| g - b).collect();
+        let change: [f64; BLOCK] =
+            std::array::from_fn(|i| if i < n { block.gap[i] - before[i] } else { 0.0 });
         self.count += n as u64;
-        self.sum += sum_in_lanes(&change);
-        self.add_extremes(block, index);
+        self.sum += sum_in_lanes(&change[..n]);
+        self.add_extremes(block, surface, index);
     }
 
-    fn add_extremes(&mut self, block: &GapBlock, index: impl Fn(usize) -> u32) {
+    fn add_extremes(
+        &mut self,
+        block: &GapBlock,
+        surface: &PaddedSurface,
+        index: impl Fn(usize) -> u32,
+    ) {
         let gaps = &block.gap[..block.located.len];
-        if let Some((max, i)) = largest(gaps).filter(|&(max, _)| max > self.max) {
-            (self.max, self.max_tile) = (max, block.tile[i] as usize);
+        let max = gaps
+            .iter()
+            .fold(f64::NEG_INFINITY, |m, &v| if v > m { v } else { m });
+        // Rare after the first blocks: only then find where the maximum is.
+        if max > self.max {
+            if let Some(i) = gaps.iter().position(|&v| v == max) {
+                (self.max, self.max_tile) = (max, block.tile[i] as usize);
+            }
         }
         lower_minima(&mut self.minima, &block.tile[..gaps.len()], gaps);
-        block.for_each_wrong(|i, excess| self.wrong.push((index(i), excess)));
+        block.for_each_wrong(surface, |i, excess| self.wrong.push((index(i), excess)));
     }
 
     /// Appends a later part (parts are merged in order, so the sum is the same
@@ -64,7 +96,10 @@ impl Tally {
         if other.max > self.max {
             (self.max, self.max_tile) = (other.max, other.max_tile);
         }
-        self.minima.iter_mut().zip(&other.minima).for_each(|(a, &b)| *a = a.min(b));
+        self.minima
+            .iter_mut()
+            .zip(&other.minima)
+            .for_each(|(a, &b)| *a = a.min(b));
         self.wrong.extend_from_slice(&other.wrong);
     }
 
@@ -97,7 +132,11 @@ impl Tally {
             violations: self.wrong.len() as u64,
             min_gap: self.min(),
             max_gap: self.max,
-            mean_gap: if self.count > 0 { self.sum / self.count as f64 } else { 0.0 },
+            mean_gap: if self.count > 0 {
+                self.sum / self.count as f64
+            } else {
+                0.0
+            },
             corrected_points: corrected,
         }
     }
@@ -120,24 +159,14 @@ pub(super) fn sum_in_lanes(x: &[f64]) -> f64 {
     (lanes[0] + lanes[2]) + (lanes[1] + lanes[3])
 }
 
-/// The largest of `x` and the first place it occurs (`None` if `x` is empty or
-/// all NaN).
-#[inline]
-fn largest(x: &[f64]) -> Option<(f64, usize)> {
-    let max = x.iter().fold(f64::NEG_INFINITY, |m, &v| if v > m { v } else { m });
-    x.iter().position(|&v| v == max).map(|i| (max, i))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn lane_sums_and_largest() {
+    fn lane_sums() {
         assert_eq!(sum_in_lanes(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]), 28.0);
         assert_eq!(sum_in_lanes(&[]), 0.0);
-        assert_eq!(largest(&[1.0, 5.0, -2.0, 5.0]), Some((5.0, 1)));
-        assert_eq!(largest(&[f64::NAN]), None);
     }
 
     #[test]
@@ -152,7 +181,10 @@ mod tests {
         let touched = [false, true, false];
         let mut a = tally.clone();
         a.revise(&touched, revised.clone());
-        assert_eq!((a.count, a.sum, a.max, a.min(), a.wrong.len()), (10, 5.3, 1.5, 0.05, 0));
+        assert_eq!(
+            (a.count, a.sum, a.max, a.min(), a.wrong.len()),
+            (10, 5.3, 1.5, 0.05, 0)
+        );
         // Untouched largest gap: it stands against a smaller revised one.
         tally.max_tile = 2;
         tally.revise(&touched, revised);

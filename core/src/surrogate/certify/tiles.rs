@@ -37,17 +37,25 @@ impl TileGrid {
 
     fn with_shift(cells_s: usize, cells_t: usize, shift: u32) -> Self {
         let side = 1usize << shift;
-        Self { shift, cells_s, cells_t, tiles_s: cells_s.div_ceil(side), tiles_t: cells_t.div_ceil(side) }
+        Self {
+            shift,
+            cells_s,
+            cells_t,
+            tiles_s: cells_s.div_ceil(side),
+            tiles_t: cells_t.div_ceil(side),
+        }
     }
 
     pub fn len(&self) -> usize {
         self.tiles_s * self.tiles_t
     }
 
-    /// Tile of cell `(h, g)`.
+    /// Tile of cell `(h, g)`, given as floats (exact small integers): the tile
+    /// number as a float, `floor(g / 2^shift) * tiles_s + floor(h / 2^shift)`.
     #[inline(always)]
-    pub fn tile(&self, h: u32, g: u32) -> usize {
-        (g >> self.shift) as usize * self.tiles_s + (h >> self.shift) as usize
+    pub fn tile(&self, h: f64, g: f64) -> f64 {
+        let inverse_side = 1.0 / (1u64 << self.shift) as f64;
+        (g * inverse_side).floor() * self.tiles_s as f64 + (h * inverse_side).floor()
     }
 
     /// Marks the tiles of the cells `h0..=h1 x g0..=g1` (clamped to the grid).
@@ -82,7 +90,8 @@ mod tests {
         assert_eq!((fine.shift, fine.len()), (0, 361));
         let coarse = TileGrid::new(59, 59, 30_000, 4);
         assert!(coarse.shift >= 1 && coarse.len() * 4 * 8 <= MIN_BYTES);
-        assert_eq!(coarse.tile(58, 58), coarse.len() - 1);
+        assert_eq!(coarse.tile(58.0, 58.0), (coarse.len() - 1) as f64);
+        assert_eq!(coarse.tile(3.0, 0.0), (3 >> coarse.shift) as f64);
         let huge = TileGrid::new(1023, 1023, 100_000_000, 1);
         assert!(huge.len() <= MAX_TILES);
     }
@@ -99,7 +108,11 @@ mod tests {
     #[test]
     fn minima_take_the_smallest_gap_of_each_tile() {
         let mut minima = vec![f64::INFINITY; 3];
-        lower_minima(&mut minima, &[0, 0, 2, 1, 1, 0], &[1.0, 2.0, 3.0, 5.0, 4.0, -1.0]);
+        lower_minima(
+            &mut minima,
+            &[0, 0, 2, 1, 1, 0],
+            &[1.0, 2.0, 3.0, 5.0, 4.0, -1.0],
+        );
         assert_eq!(minima, vec![-1.0, 4.0, 3.0]);
     }
 }
