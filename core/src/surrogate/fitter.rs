@@ -73,7 +73,7 @@ impl Default for FitOptions {
             tightness: Tightness::Lowered,
             sub_cells: 4,
             max_solves: DEFAULT_MAX_SOLVES,
-            sweeps: 4,
+            sweeps: 3,
         }
     }
 }
