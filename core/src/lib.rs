@@ -6,6 +6,8 @@
 pub mod cloud;
 pub mod format;
 pub mod math;
+pub mod mesh;
+pub mod message;
 pub mod query;
 pub mod spline;
 pub mod surrogate;

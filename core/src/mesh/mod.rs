@@ -1,0 +1,21 @@
+//! Quad meshes of arbitrary topology (Marsala, Mantzaflaris & Mourrain, "Point Cloud
+//! Fitting by G1 Smooth Spline Functions", Sections 2-3): validated construction,
+//! half-edge adjacency, the paper's vertex/edge classification, Catmull-Clark
+//! refinement and OBJ bytes.
+
+mod catmull_clark;
+mod classify;
+mod error;
+mod half_edge;
+mod obj;
+mod quad_mesh;
+
+#[cfg(test)]
+mod tests;
+
+pub use catmull_clark::catmull_clark;
+pub use classify::{classify, EdgeKind, MeshClassification, VertexKind};
+pub use error::MeshError;
+pub use half_edge::HalfEdgeMesh;
+pub use obj::{parse_obj, write_obj, ObjError};
+pub use quad_mesh::QuadMesh;

@@ -1,0 +1,435 @@
+//! Tests of the quad-mesh module: validation, adjacency, classification,
+//! Catmull-Clark refinement and OBJ bytes.
+
+use super::*;
+
+fn cube() -> QuadMesh {
+    let vertices = (0..8)
+        .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+        .collect();
+    let faces = vec![
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    QuadMesh::new(vertices, faces).expect("cube is valid")
+}
+
+/// An n x n grid of unit quads in the plane z = 0.
+fn grid(n: u32) -> (Vec<[f64; 3]>, Vec<[u32; 4]>) {
+    let m = n + 1;
+    let mut vertices = Vec::new();
+    for j in 0..m {
+        for i in 0..m {
+            vertices.push([i as f64, j as f64, 0.0]);
+        }
+    }
+    let v = |i: u32, j: u32| j * m + i;
+    let mut faces = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            faces.push([v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)]);
+        }
+    }
+    (vertices, faces)
+}
+
+/// The paper's M_T: a triangle split into three quads around a valence-3 EV.
+fn m_t() -> QuadMesh {
+    let a = [0.0, 0.0, 0.0];
+    let b = [2.0, 0.0, 0.0];
+    let c = [1.0, 3f64.sqrt(), 0.0];
+    let mid = |p: [f64; 3], q: [f64; 3]| [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, 0.0];
+    let o = [1.0, 3f64.sqrt() / 3.0, 0.0];
+    // 0 A, 1 B, 2 C, 3 mAB, 4 mBC, 5 mCA, 6 O
+    let vertices = vec![a, b, c, mid(a, b), mid(b, c), mid(c, a), o];
+    let faces = vec![[0, 3, 6, 5], [1, 4, 6, 3], [2, 5, 6, 4]];
+    QuadMesh::new(vertices, faces).expect("M_T is valid")
+}
+
+fn check_half_edges(mesh: &QuadMesh) {
+    let he = mesh.half_edges();
+    assert_eq!(he.half_edge_count(), 4 * mesh.face_count());
+    for h in 0..he.half_edge_count() {
+        assert_eq!(he.prev(he.next(h)), h);
+        assert_eq!(he.face(he.next(h)), he.face(h));
+        if let Some(o) = he.opposite(h) {
+            assert_eq!(he.opposite(o), Some(h));
+            assert_eq!(he.origin(o), he.target(h));
+            assert_eq!(he.target(o), he.origin(h));
+            assert_eq!(he.edge(o), he.edge(h));
+        }
+    }
+    for v in 0..mesh.vertex_count() {
+        let out = he.outgoing(v);
+        assert!(out.iter().all(|&h| he.origin(h) as usize == v));
+        // Consecutive outgoing edges rotate through the shared edge.
+        for w in out.windows(2) {
+            assert_eq!(he.opposite(he.prev(w[0])), Some(w[1]));
+        }
+        assert_eq!(he.neighbours(v).len(), he.valence(v));
+    }
+    let boundary_edges = (0..he.edge_count())
+        .filter(|&e| he.is_boundary_edge(e))
+        .count();
+    let in_loops: usize = he.boundary_loops().iter().map(Vec::len).sum();
+    assert_eq!(boundary_edges, in_loops);
+    for lp in he.boundary_loops() {
+        for (i, &h) in lp.iter().enumerate() {
+            assert!(he.opposite(h).is_none());
+            assert_eq!(he.target(h), he.origin(lp[(i + 1) % lp.len()]));
+        }
+    }
+}
+
+#[test]
+fn mesh_cube_is_closed_with_eight_valence_three_evs() {
+    let cube = cube();
+    check_half_edges(&cube);
+    assert!(cube.is_closed());
+    assert_eq!(cube.edge_count(), 12);
+    assert_eq!(cube.euler_characteristic(), 2);
+    let c = classify(&cube);
+    assert_eq!((c.n_v, c.n_e, c.n_f), (8, 12, 6));
+    assert_eq!(c.n_iev, 8);
+    assert!(c.valences.iter().all(|&n| n == 3));
+    assert_eq!((c.n_rv, c.n_brv, c.n_bev, c.n_c), (0, 0, 0, 0));
+    assert_eq!((c.n_ee, c.n_re, c.n_be), (12, 0, 0));
+    assert!(!c.has_isolated_evs());
+}
+
+#[test]
+fn mesh_grid_classification() {
+    let (v, f) = grid(3);
+    let mesh = QuadMesh::new(v, f).expect("grid");
+    check_half_edges(&mesh);
+    assert!(!mesh.is_closed());
+    assert_eq!(mesh.half_edges().boundary_loops().len(), 1);
+    assert_eq!(mesh.half_edges().boundary_loop_vertices(0).len(), 12);
+    let c = classify(&mesh);
+    assert_eq!((c.n_v, c.n_e, c.n_f), (16, 24, 9));
+    assert_eq!((c.n_rv, c.n_iev), (4, 0));
+    assert_eq!((c.n_brv, c.n_bev, c.n_c), (8, 0, 4));
+    assert_eq!((c.n_re, c.n_ee, c.n_be), (12, 0, 12));
+    assert_eq!(c.valences[0], 2);
+    assert_eq!(c.valences[1], 3);
+    assert_eq!(c.valences[5], 4);
+    assert!(c.has_isolated_evs());
+    assert_eq!(c.vertices[0], VertexKind::Corner);
+    // The first outgoing half-edge of a boundary vertex is on the boundary.
+    let he = mesh.half_edges();
+    assert!(he.opposite(he.outgoing(1)[0]).is_none());
+}
+
+#[test]
+fn mesh_m_t_has_one_valence_three_ev() {
+    let mesh = m_t();
+    check_half_edges(&mesh);
+    let c = classify(&mesh);
+    assert_eq!((c.n_v, c.n_e, c.n_f), (7, 9, 3));
+    assert_eq!(c.n_iev, 1);
+    assert_eq!(c.vertices[6], VertexKind::InnerExtraordinary);
+    assert_eq!(c.valences[6], 3);
+    assert_eq!((c.n_c, c.n_brv, c.n_bev, c.n_rv), (3, 3, 0, 0));
+    assert_eq!((c.n_ee, c.n_re, c.n_be), (3, 0, 6));
+    assert!(c.has_isolated_evs());
+    assert_eq!(mesh.half_edges().boundary_loops().len(), 1);
+}
+
+#[test]
+fn mesh_boundary_extraordinary_vertex() {
+    // Three quads fanned around a boundary vertex: kappa = 3 patches, valence N = 4.
+    let vertices = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [-1.0, 1.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [-1.0, -1.0, 0.0],
+        [0.0, -1.0, 0.0],
+    ];
+    let faces = vec![[0, 1, 2, 3], [0, 3, 4, 5], [0, 5, 6, 7]];
+    let mesh = QuadMesh::new(vertices, faces).expect("fan");
+    check_half_edges(&mesh);
+    let c = classify(&mesh);
+    assert_eq!(c.vertices[0], VertexKind::BoundaryExtraordinary);
+    assert_eq!(c.valences[0], 4);
+    assert_eq!((c.n_bev, c.n_ee), (1, 2));
+}
+
+#[test]
+fn mesh_refinement_counts_closed() {
+    let cube = cube();
+    let once = catmull_clark(&cube).expect("refine");
+    check_half_edges(&once);
+    assert_eq!(once.face_count(), 24);
+    assert_eq!(once.vertex_count(), 8 + 12 + 6);
+    assert_eq!(once.edge_count(), 2 * 12 + 4 * 6);
+    assert_eq!(once.euler_characteristic(), 2);
+    let c = classify(&once);
+    assert_eq!((c.n_iev, c.n_rv), (8, 18));
+    assert!((0..8).all(|v| c.valences[v] == 3));
+    assert!(c.has_isolated_evs());
+    let twice = catmull_clark(&once).expect("refine");
+    assert_eq!(twice.face_count(), 96);
+    assert_eq!(twice.vertex_count(), 26 + 48 + 24);
+    let c2 = classify(&twice);
+    assert_eq!((c2.n_iev, c2.n_rv), (8, 90));
+    // The cube is symmetric, so its refinement keeps the centroid.
+    let n = twice.vertex_count() as f64;
+    for k in 0..3 {
+        let mean: f64 = twice.vertices().iter().map(|p| p[k]).sum::<f64>() / n;
+        assert!((mean - 0.5).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn mesh_refinement_of_open_meshes() {
+    let mesh = m_t();
+    let refined = catmull_clark(&mesh).expect("refine");
+    check_half_edges(&refined);
+    assert_eq!(refined.face_count(), 12);
+    assert_eq!(refined.vertex_count(), 7 + 9 + 3);
+    let c = classify(&refined);
+    assert_eq!(c.vertices[6], VertexKind::InnerExtraordinary);
+    assert_eq!((c.n_iev, c.n_bev, c.n_c), (1, 0, 3));
+    // New vertices (edge and face points) are all regular.
+    for v in 7..refined.vertex_count() {
+        assert!(!c.vertices[v].is_extraordinary(), "vertex {v}");
+        assert_ne!(c.vertices[v], VertexKind::Corner);
+    }
+    assert_eq!(c.n_brv, 3 + 6);
+    assert_eq!(c.n_rv, 3 + 3);
+    // Corners stay fixed.
+    for v in 0..3 {
+        assert_eq!(refined.vertices()[v], mesh.vertices()[v]);
+    }
+
+    // A regular planar grid refines to the grid of half the spacing.
+    let (v, f) = grid(3);
+    let g = QuadMesh::new(v, f).expect("grid");
+    let r = catmull_clark(&g).expect("refine");
+    assert_eq!(r.face_count(), 36);
+    assert_eq!(r.vertex_count(), 16 + 24 + 9);
+    for p in r.vertices() {
+        assert_eq!(p[2], 0.0);
+        assert_eq!((2.0 * p[0]).fract(), 0.0);
+        assert_eq!((2.0 * p[1]).fract(), 0.0);
+    }
+    for (a, b) in r.vertices().iter().zip(g.vertices()) {
+        assert_eq!(a, b);
+    }
+    let c = classify(&r);
+    assert_eq!(
+        (c.n_rv, c.n_brv, c.n_c, c.n_iev, c.n_bev),
+        (25, 20, 4, 0, 0)
+    );
+}
+
+#[test]
+fn mesh_rejects_invalid_topology() {
+    let p = vec![[0.0; 3]; 10];
+    assert_eq!(
+        QuadMesh::new(p.clone(), vec![]).unwrap_err(),
+        MeshError::NoFaces
+    );
+    assert_eq!(
+        QuadMesh::new(p[..4].to_vec(), vec![[0, 1, 2, 4]]).unwrap_err(),
+        MeshError::IndexOutOfRange {
+            face: 0,
+            corner: 3,
+            index: 4,
+            vertex_count: 4
+        }
+    );
+    assert_eq!(
+        QuadMesh::new(p[..4].to_vec(), vec![[0, 1, 1, 3]]).unwrap_err(),
+        MeshError::DegenerateFace { face: 0, vertex: 1 }
+    );
+    // Three faces on edge 0-1.
+    let err = QuadMesh::new(p.clone(), vec![[0, 1, 2, 3], [1, 0, 4, 5], [0, 1, 6, 7]]).unwrap_err();
+    assert!(matches!(
+        err,
+        MeshError::NonManifoldEdge {
+            a: 0,
+            b: 1,
+            first: 0,
+            second: 1,
+            third: 2
+        }
+    ));
+    let err = QuadMesh::new(p.clone(), vec![[0, 1, 2, 3], [1, 0, 4, 5], [1, 0, 6, 7]]).unwrap_err();
+    assert_eq!(
+        err,
+        MeshError::NonManifoldEdge {
+            a: 0,
+            b: 1,
+            first: 0,
+            second: 1,
+            third: 2
+        }
+    );
+    // Flipped face.
+    let err = QuadMesh::new(p[..6].to_vec(), vec![[0, 1, 2, 3], [0, 1, 4, 5]]).unwrap_err();
+    assert_eq!(
+        err,
+        MeshError::InconsistentOrientation {
+            a: 0,
+            b: 1,
+            first: 0,
+            second: 1
+        }
+    );
+    // Bow-tie: two quads touching at vertex 0 only.
+    let err = QuadMesh::new(p[..7].to_vec(), vec![[0, 1, 2, 3], [0, 4, 5, 6]]).unwrap_err();
+    assert_eq!(err, MeshError::NonManifoldVertex { vertex: 0 });
+    let err = QuadMesh::new(p[..5].to_vec(), vec![[0, 1, 2, 3]]).unwrap_err();
+    assert_eq!(err, MeshError::UnusedVertex { vertex: 4 });
+    let mut bad = p[..4].to_vec();
+    bad[2][1] = f64::NAN;
+    assert_eq!(
+        QuadMesh::new(bad, vec![[0, 1, 2, 3]]).unwrap_err(),
+        MeshError::NonFiniteVertex { vertex: 2 }
+    );
+    // Two cubes sharing one vertex: each fan is closed, but there are two.
+    let c = cube();
+    let (mut v, mut f) = c.into_parts();
+    let offset = v.len() as u32 - 1;
+    v.extend((1..8).map(|i| [2.0 + (i & 1) as f64, 0.0, 0.0]));
+    // Remap so that vertex 0 of the second cube is vertex 7 of the first.
+    let remap = |i: u32| if i == 0 { 7 } else { i + offset };
+    let second: Vec<[u32; 4]> = cube().faces().iter().map(|q| q.map(remap)).collect();
+    f.extend(second);
+    assert_eq!(
+        QuadMesh::new(v, f).unwrap_err(),
+        MeshError::NonManifoldVertex { vertex: 7 }
+    );
+}
+
+#[test]
+fn mesh_obj_round_trip() {
+    let cube = cube();
+    let bytes = write_obj(&cube);
+    assert_eq!(parse_obj(&bytes).expect("parse"), cube);
+
+    let mut refined = catmull_clark(&m_t()).expect("refine");
+    refined = catmull_clark(&refined).expect("refine");
+    let back = parse_obj(&write_obj(&refined)).expect("parse");
+    assert_eq!(back, refined);
+    assert!(back
+        .vertices()
+        .iter()
+        .zip(refined.vertices())
+        .all(|(a, b)| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())));
+}
+
+#[test]
+fn mesh_obj_parses_slashes_negatives_and_comments() {
+    let text = b"# a quad\r\nmtllib x.mtl\no thing\nv 0 0 0\nv 1 0 0 1.0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2//1 3/1 4 # comment\nv 2 0 0\nv 2 1 0\nf -5 -2 -1 -4\n";
+    let mesh = parse_obj(text).expect("parse");
+    assert_eq!(mesh.faces(), &[[0, 1, 2, 3], [1, 4, 5, 2]]);
+    assert_eq!(mesh.vertex_count(), 6);
+}
+
+#[test]
+fn mesh_obj_rejects_bad_input() {
+    let tri = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n";
+    assert_eq!(
+        parse_obj(tri).unwrap_err(),
+        ObjError::NotQuad {
+            line: 4,
+            corners: 3
+        }
+    );
+    let pent = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 2 0\nf 1 2 3 4 5\n";
+    assert_eq!(
+        parse_obj(pent).unwrap_err(),
+        ObjError::NotQuad {
+            line: 6,
+            corners: 5
+        }
+    );
+    let msg = parse_obj(tri).unwrap_err().to_string();
+    assert!(msg.contains("line 4"), "{msg}");
+    assert_eq!(
+        parse_obj(b"v 0 0\n").unwrap_err(),
+        ObjError::BadVertex { line: 1 }
+    );
+    assert!(matches!(
+        parse_obj(b"v 0 0 0\nf 1 2 x 4\n").unwrap_err(),
+        ObjError::BadIndex { line: 2, .. }
+    ));
+    assert!(matches!(
+        parse_obj(b"v 0 0 0\nf 1 2 0 4\n").unwrap_err(),
+        ObjError::BadIndex { line: 2, .. }
+    ));
+    assert_eq!(
+        parse_obj(b"v 0 0 0\nf -1 -2 -3 -4\n").unwrap_err(),
+        ObjError::IndexOutOfRange {
+            line: 2,
+            index: -2,
+            vertex_count: 1
+        }
+    );
+    assert_eq!(
+        parse_obj(b"v 0 0 0\nf 1 2 3 4\n").unwrap_err(),
+        ObjError::IndexOutOfRange {
+            line: 2,
+            index: 2,
+            vertex_count: 1
+        }
+    );
+    assert!(matches!(
+        parse_obj(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 2 2\nf 1 2 3 4\n").unwrap_err(),
+        ObjError::Mesh(MeshError::UnusedVertex { vertex: 4 })
+    ));
+    assert_eq!(
+        parse_obj(b"").unwrap_err(),
+        ObjError::Mesh(MeshError::NoFaces)
+    );
+    assert_eq!(
+        parse_obj(b"v 0 0 0\n\xff\n").unwrap_err(),
+        ObjError::NotUtf8 { line: 2 }
+    );
+}
+
+#[test]
+fn mesh_catmull_clark_point_rules() {
+    let cube = cube();
+    let r = catmull_clark(&cube).expect("refine");
+    // Valence-3 vertex at the origin: (F + 2R + (n - 3)P) / n with n = 3.
+    for k in 0..3 {
+        assert!((r.vertices()[0][k] - 2.0 / 9.0).abs() < 1e-15);
+    }
+    // Inner edge 0-1: average of its ends and the two face points.
+    let he = cube.half_edges();
+    let e = (0..he.edge_count())
+        .find(|&e| {
+            let [a, b] = he.edge_vertices(e);
+            (a.min(b), a.max(b)) == (0, 1)
+        })
+        .expect("edge 0-1");
+    let p = r.vertices()[8 + e];
+    assert!((p[0] - 0.5).abs() < 1e-15);
+    assert!((p[1] - 0.125).abs() < 1e-15);
+    assert!((p[2] - 0.125).abs() < 1e-15);
+    // Face point: centroid of the face.
+    assert_eq!(r.vertices()[8 + 12], [0.5, 0.5, 0.0]);
+
+    // Boundary vertex: (a + 6p + b) / 8 along the boundary; boundary edge: midpoint.
+    let (mut v, f) = grid(2);
+    v[1][2] = 1.0;
+    let g = QuadMesh::new(v, f).expect("grid");
+    let r = catmull_clark(&g).expect("refine");
+    assert_eq!(r.vertices()[1], [1.0, 0.0, 0.75]);
+    let he = g.half_edges();
+    let e = (0..he.edge_count())
+        .find(|&e| he.edge_vertices(e) == [0, 1])
+        .expect("edge 0-1");
+    assert_eq!(r.vertices()[9 + e], [0.5, 0.0, 0.5]);
+    assert_eq!(r.vertices()[0], [0.0, 0.0, 0.0]);
+}

@@ -1,0 +1,212 @@
+//! Point-cloud messages: stamp, sequence, source, sensor pose, and the points as
+//! raw little-endian f32 xyz (12 bytes a point) with optional f32 intensity.
+
+use super::blob::{bytes_to_f32s, decode, encode, f32s_to_bytes};
+use super::error::MessageError;
+use super::{check_version, SCHEMA_VERSION};
+use serde::{Deserialize, Serialize};
+
+/// Sensor pose in the world: position and unit quaternion `[x, y, z, w]`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SensorPose {
+    pub position: [f64; 3],
+    pub orientation: [f64; 4],
+}
+
+impl Default for SensorPose {
+    fn default() -> Self {
+        Self {
+            position: [0.0; 3],
+            orientation: [0.0, 0.0, 0.0, 1.0],
+        }
+    }
+}
+
+/// A point cloud on the wire (MessagePack map with these field names).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CloudMessage {
+    pub version: u16,
+    /// Acquisition time, nanoseconds since the Unix epoch.
+    pub stamp_ns: u64,
+    pub sequence: u64,
+    /// Which sensor or scene produced it.
+    pub source: String,
+    pub pose: SensorPose,
+    /// `points * 12` bytes: x, y, z as little-endian f32, point after point.
+    #[serde(with = "serde_bytes")]
+    pub points: Vec<u8>,
+    /// `points * 4` bytes of little-endian f32 intensity, or absent.
+    #[serde(with = "serde_bytes", default, skip_serializing_if = "Option::is_none")]
+    pub intensity: Option<Vec<u8>>,
+}
+
+impl CloudMessage {
+    pub fn new(
+        stamp_ns: u64,
+        sequence: u64,
+        source: &str,
+        pose: SensorPose,
+        points: &[[f32; 3]],
+    ) -> Self {
+        Self {
+            version: SCHEMA_VERSION,
+            stamp_ns,
+            sequence,
+            source: source.to_owned(),
+            pose,
+            points: f32s_to_bytes(points.iter().flatten().copied()),
+            intensity: None,
+        }
+    }
+
+    pub fn with_intensity(mut self, intensity: &[f32]) -> Self {
+        self.intensity = Some(f32s_to_bytes(intensity.iter().copied()));
+        self
+    }
+
+    pub fn to_bytes(&self) -> Result<Vec<u8>, MessageError> {
+        encode(self)
+    }
+
+    /// Decodes and validates: version, blob lengths, finite values, pose.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, MessageError> {
+        let msg: CloudMessage = decode(bytes)?;
+        check_version(msg.version)?;
+        msg.point_array()?;
+        msg.intensity_array()?;
+        let pose = msg.pose.position.iter().chain(&msg.pose.orientation);
+        if let Some(index) = pose.clone().position(|v| !v.is_finite()) {
+            return Err(MessageError::NonFinite {
+                field: "pose",
+                index,
+            });
+        }
+        Ok(msg)
+    }
+
+    /// The points as xyz triples.
+    pub fn point_array(&self) -> Result<Vec<[f32; 3]>, MessageError> {
+        if self.points.len() % 12 != 0 {
+            return Err(MessageError::BlobLength {
+                field: "points",
+                len: self.points.len(),
+                unit: 12,
+            });
+        }
+        let flat = bytes_to_f32s(&self.points, "points")?;
+        Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+    }
+
+    pub fn intensity_array(&self) -> Result<Option<Vec<f32>>, MessageError> {
+        let Some(bytes) = &self.intensity else {
+            return Ok(None);
+        };
+        let values = bytes_to_f32s(bytes, "intensity")?;
+        let expected = self.points.len() / 12;
+        if values.len() != expected {
+            return Err(MessageError::Count {
+                field: "intensity",
+                found: values.len(),
+                expected,
+            });
+        }
+        Ok(Some(values))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> CloudMessage {
+        CloudMessage::new(
+            1_700_000_000_000_000_000,
+            7,
+            "sim/moving-spheres",
+            SensorPose::default(),
+            &[[1.0, 2.0, 3.0], [-4.5, 0.25, 1e-3]],
+        )
+        .with_intensity(&[0.5, 1.0])
+    }
+
+    #[test]
+    fn round_trips_and_keeps_the_documented_layout() {
+        let msg = sample();
+        let bytes = msg.to_bytes().unwrap();
+        let back = CloudMessage::from_bytes(&bytes).unwrap();
+        assert_eq!(back, msg);
+        assert_eq!(
+            back.point_array().unwrap(),
+            vec![[1.0, 2.0, 3.0], [-4.5, 0.25, 1e-3]]
+        );
+        // Field names are in the map (a consumer in another language relies on them).
+        let value: rmpv_like::Map = rmp_serde::from_slice(&bytes).unwrap();
+        for key in [
+            "version",
+            "stamp_ns",
+            "sequence",
+            "source",
+            "pose",
+            "points",
+            "intensity",
+        ] {
+            assert!(value.contains_key(key), "{key}");
+        }
+        // The points blob is raw little-endian f32 xyz.
+        assert_eq!(&msg.points[0..4], &1.0f32.to_le_bytes());
+        assert_eq!(msg.points.len(), 24);
+    }
+
+    #[test]
+    fn bad_messages_are_named_errors() {
+        let mut msg = sample();
+        msg.points.pop();
+        assert!(matches!(
+            CloudMessage::from_bytes(&msg.to_bytes().unwrap()),
+            Err(MessageError::BlobLength { .. })
+        ));
+        let mut msg = sample();
+        msg.points[0..4].copy_from_slice(&f32::NAN.to_le_bytes());
+        assert!(matches!(
+            CloudMessage::from_bytes(&msg.to_bytes().unwrap()),
+            Err(MessageError::NonFinite { .. })
+        ));
+        let mut msg = sample();
+        msg.version = 99;
+        assert!(matches!(
+            CloudMessage::from_bytes(&msg.to_bytes().unwrap()),
+            Err(MessageError::Version { .. })
+        ));
+        let mut msg = sample();
+        msg.intensity = Some(vec![0; 4]);
+        assert!(matches!(
+            CloudMessage::from_bytes(&msg.to_bytes().unwrap()),
+            Err(MessageError::Count { .. })
+        ));
+    }
+
+    #[test]
+    fn truncated_and_garbage_bytes_never_panic() {
+        let bytes = sample().to_bytes().unwrap();
+        for len in 0..bytes.len() {
+            assert!(CloudMessage::from_bytes(&bytes[..len]).is_err());
+        }
+        let mut x = 0x9E37_79B9u32;
+        for _ in 0..2000 {
+            let garbage: Vec<u8> = (0..64)
+                .map(|_| {
+                    x ^= x << 13;
+                    x ^= x >> 17;
+                    x ^= x << 5;
+                    x as u8
+                })
+                .collect();
+            let _ = CloudMessage::from_bytes(&garbage);
+        }
+    }
+
+    /// A generic map view for checking field names without a schema.
+    mod rmpv_like {
+        pub type Map = std::collections::BTreeMap<String, serde::de::IgnoredAny>;
+    }
+}

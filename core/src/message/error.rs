@@ -1,0 +1,27 @@
+//! Why a message could not be encoded or decoded.
+
+use thiserror::Error;
+
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum MessageError {
+    #[error("not a valid shroud message: {0}")]
+    Malformed(String),
+    #[error("message schema version {found}, this build reads version {expected}")]
+    Version { found: u16, expected: u16 },
+    #[error("the {field} blob has {len} bytes, not a multiple of {unit}")]
+    BlobLength {
+        field: &'static str,
+        len: usize,
+        unit: usize,
+    },
+    #[error("the {field} blob holds {found} values, expected {expected}")]
+    Count {
+        field: &'static str,
+        found: usize,
+        expected: usize,
+    },
+    #[error("{field} holds a non-finite value at index {index}")]
+    NonFinite { field: &'static str, index: usize },
+    #[error("invalid {field}: {reason}")]
+    Invalid { field: &'static str, reason: String },
+}
