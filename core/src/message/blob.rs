@@ -12,7 +12,7 @@ pub fn f64s_to_bytes(values: &[f64]) -> Vec<u8> {
 
 /// Decodes a blob of `f32` values, checking its length and finiteness.
 pub fn bytes_to_f32s(bytes: &[u8], field: &'static str) -> Result<Vec<f32>, MessageError> {
-    if bytes.len() % 4 != 0 {
+    if !bytes.len().is_multiple_of(4) {
         return Err(MessageError::BlobLength {
             field,
             len: bytes.len(),
@@ -31,7 +31,7 @@ pub fn bytes_to_f32s(bytes: &[u8], field: &'static str) -> Result<Vec<f32>, Mess
 
 /// Decodes a blob of `f64` values, checking its length and finiteness.
 pub fn bytes_to_f64s(bytes: &[u8], field: &'static str) -> Result<Vec<f64>, MessageError> {
-    if bytes.len() % 8 != 0 {
+    if !bytes.len().is_multiple_of(8) {
         return Err(MessageError::BlobLength {
             field,
             len: bytes.len(),

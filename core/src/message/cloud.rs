@@ -86,7 +86,7 @@ impl CloudMessage {
 
     /// The points as xyz triples.
     pub fn point_array(&self) -> Result<Vec<[f32; 3]>, MessageError> {
-        if self.points.len() % 12 != 0 {
+        if !self.points.len().is_multiple_of(12) {
             return Err(MessageError::BlobLength {
                 field: "points",
                 len: self.points.len(),
