@@ -12,37 +12,34 @@ pub fn f64s_to_bytes(values: &[f64]) -> Vec<u8> {
 
 /// Decodes a blob of `f32` values, checking its length and finiteness.
 pub fn bytes_to_f32s(bytes: &[u8], field: &'static str) -> Result<Vec<f32>, MessageError> {
-    if !bytes.len().is_multiple_of(4) {
-        return Err(MessageError::BlobLength {
-            field,
-            len: bytes.len(),
-            unit: 4,
-        });
-    }
-    let values: Vec<f32> = bytes
-        .chunks_exact(4)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect();
-    match values.iter().position(|v| !v.is_finite()) {
-        Some(index) => Err(MessageError::NonFinite { field, index }),
-        None => Ok(values),
-    }
+    decode_floats(bytes, field, f32::from_le_bytes, f32::is_finite)
 }
 
 /// Decodes a blob of `f64` values, checking its length and finiteness.
 pub fn bytes_to_f64s(bytes: &[u8], field: &'static str) -> Result<Vec<f64>, MessageError> {
-    if !bytes.len().is_multiple_of(8) {
+    decode_floats(bytes, field, f64::from_le_bytes, f64::is_finite)
+}
+
+/// The shared decoder: `N`-byte little-endian values, all finite.
+fn decode_floats<T, const N: usize>(
+    bytes: &[u8],
+    field: &'static str,
+    from_le: fn([u8; N]) -> T,
+    is_finite: fn(T) -> bool,
+) -> Result<Vec<T>, MessageError>
+where
+    T: Copy,
+{
+    let (chunks, rest) = bytes.as_chunks::<N>();
+    if !rest.is_empty() {
         return Err(MessageError::BlobLength {
             field,
             len: bytes.len(),
-            unit: 8,
+            unit: N,
         });
     }
-    let values: Vec<f64> = bytes
-        .chunks_exact(8)
-        .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
-        .collect();
-    match values.iter().position(|v| !v.is_finite()) {
+    let values: Vec<T> = chunks.iter().map(|c| from_le(*c)).collect();
+    match values.iter().position(|&v| !is_finite(v)) {
         Some(index) => Err(MessageError::NonFinite { field, index }),
         None => Ok(values),
     }
