@@ -3,11 +3,16 @@
 //! certification, queries, and the file formats. No I/O, no async: every function
 //! here takes values or byte slices and returns values.
 
+pub mod blend;
 pub mod cloud;
 pub mod format;
+pub mod guard;
+pub mod ingest;
+pub mod launch;
 pub mod math;
 pub mod mesh;
 pub mod message;
+pub mod metrics;
 pub mod query;
 pub mod spline;
 pub mod surrogate;

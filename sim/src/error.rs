@@ -42,8 +42,47 @@ pub enum SceneError {
         reason: &'static str,
     },
     /// `Scene::by_name` got a name it does not know.
-    #[error("unknown scene `{name}`; expected one of: moving-spheres, terrain, table-top")]
+    #[error("unknown scene `{name}`; expected one of: moving-spheres, terrain, table-top, scan-table-top, scan-terrain (scan-mesh is built from a mesh with Scene::scan_mesh)")]
     UnknownScene { name: String },
+    /// A parameter lies outside an open or half-open interval (a field of view in
+    /// (0, π), a dropout probability in [0, 1)).
+    #[error("scene parameter `{parameter}` must lie in {interval}, got {value}")]
+    OutOfInterval {
+        parameter: String,
+        value: f64,
+        interval: &'static str,
+    },
+    /// A scanner resolution (columns, rows or point budget) is zero.
+    #[error("scene parameter `{parameter}` must be at least 1 (a scan needs rays), got 0")]
+    ZeroResolution { parameter: String },
+    /// A mesh to scan has nothing to hit.
+    #[error("the mesh cannot be scanned: {reason}")]
+    EmptyMesh { reason: &'static str },
+    /// A mesh vertex is NaN or infinite (also once narrowed to f32).
+    #[error("mesh vertex {vertex} coordinate {axis} is {value}, must be finite (in f32)")]
+    MeshVertexNotFinite {
+        vertex: usize,
+        axis: usize,
+        value: f64,
+    },
+    /// A mesh triangle refers to a vertex that does not exist.
+    #[error(
+        "mesh triangle {triangle} refers to vertex {index}, but the mesh has {vertices} vertices"
+    )]
+    MeshIndexOutOfRange {
+        triangle: usize,
+        index: u32,
+        vertices: usize,
+    },
+    /// A `scan-mesh` scene was used before its mesh was attached.
+    #[error("the scan-mesh scene has no mesh yet: read `{path}` (e.g. with shroud_core::format::parse_triangle_mesh) and attach it with Scene::attach_mesh")]
+    MeshNotLoaded { path: String },
+    /// `Scene::by_name` was asked for a scene that needs a mesh.
+    #[error("scene `{name}` is built from a triangle mesh: use Scene::scan_mesh, or deserialize it and attach the mesh")]
+    MeshRequired { name: String },
+    /// A mesh was attached to a scene that does not scan a user mesh.
+    #[error("scene `{name}` takes no mesh: only scan-mesh does")]
+    NotAMeshScene { name: &'static str },
 }
 
 /// Rejects NaN and infinities.

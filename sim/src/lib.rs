@@ -4,19 +4,30 @@
 //! (smooth hills and sharp cliffs, the Gibbs case) and a table top (boxes and a
 //! cylinder, the aliasing case). Every generator validates its parameters and returns
 //! a [`SceneError`] instead of panicking.
+//!
+//! The scan scenes put a simulated [`RangeScanner`] (rays cast through a [`Bvh`]
+//! of a triangle mesh, with range noise and dropouts) around the table-top and
+//! terrain meshes ([`TableTop::mesh`], [`Terrain::mesh`]) or any user mesh.
 
 mod error;
+mod mesh_scene;
 mod moving_spheres;
 mod path;
 mod sampling;
+mod scanner;
 mod scene;
 mod table_objects;
 mod table_top;
 mod terrain;
 
 pub use error::{SceneError, MAX_POINTS};
+pub use mesh_scene::{DEFAULT_CYLINDER_SEGMENTS, DEFAULT_TERRAIN_CELLS, MAX_CYLINDER_SEGMENTS};
 pub use moving_spheres::MovingSpheres;
 pub use path::LissajousPath;
+pub use scanner::{
+    Bvh, MeshScan, RangeScanner, RayHit, ScanFrame, ScanPose, ScanResolution, SensorPose,
+    TableTopScan, TerrainScan,
+};
 pub use scene::Scene;
 pub use table_objects::{TableBox, TableCylinder};
 pub use table_top::TableTop;

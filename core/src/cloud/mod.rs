@@ -1,7 +1,19 @@
 //! Point clouds as the fitters and formats see them: f32 xyz triples, validated.
+// `!(x > 0.0)` deliberately rejects NaN as well, which `x <= 0.0` would let through.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+mod boundary;
+mod neighbours;
+mod normals;
+mod plane;
 mod point_cloud;
 
 pub use point_cloud::validate_points;
 
+pub use boundary::{boundary_loops, boundary_points, largest_gap, BoundaryLoop, BoundaryParams};
+pub use neighbours::{to_dvec3, to_f32, NeighbourIndex};
+pub use normals::{
+    default_orientation, estimate_normals, orient_normals, oriented_normals, Orientation,
+};
+pub use plane::{fit_plane, symmetric_eigen3, Plane, PlaneFit};
 pub use point_cloud::{CloudError, PointCloud};

@@ -40,6 +40,47 @@ pub enum FormatError {
     #[error("PLY body line {line}: {reason}")]
     PlyBadAsciiRecord { line: usize, reason: String },
 
+    // --- triangle meshes (OBJ, PLY faces) ----------------------------------------
+    #[error(
+        "not a triangle mesh: neither a PLY file nor UTF-8 OBJ text (invalid UTF-8 on line {line})"
+    )]
+    ObjNotUtf8 { line: usize },
+    #[error("OBJ line {line}: {reason}")]
+    ObjBadLine { line: usize, reason: String },
+    #[error("PLY element '{element}' is truncated: expected {expected} records, got {got} (reading stopped at byte offset {offset})")]
+    PlyTruncatedElement {
+        element: String,
+        expected: usize,
+        got: usize,
+        offset: usize,
+    },
+    #[error("PLY file has no 'face' element with records: it is a point cloud, not a mesh")]
+    PlyNoFaceElement,
+    #[error("PLY face element has no list property of vertex indices")]
+    PlyNoFaceIndices,
+    #[error("{location}: vertex index {index} is out of range (the mesh has {vertices} vertices)")]
+    MeshIndexOutOfRange {
+        location: String,
+        index: i64,
+        vertices: usize,
+    },
+    #[error("{location}: vertex index {value} is not a non-negative integer")]
+    MeshBadIndex { location: String, value: f64 },
+    #[error("{location}: a face needs at least 3 vertices, this one has {count}")]
+    MeshDegenerateFace { location: String, count: usize },
+    #[error("{location}: coordinate {axis} is {value}, must be finite")]
+    MeshNonFiniteVertex {
+        location: String,
+        axis: char,
+        value: f64,
+    },
+    #[error("the mesh has {count} vertices, more than the {max} that u32 indices address")]
+    MeshTooManyVertices { count: usize, max: usize },
+    #[error("the mesh has no vertices")]
+    MeshNoVertices,
+    #[error("the mesh has {vertices} vertices but no faces")]
+    MeshNoFaces { vertices: usize },
+
     // --- XYZ / CSV ---------------------------------------------------------------
     #[error("line {line}: {reason}")]
     XyzBadLine { line: usize, reason: String },

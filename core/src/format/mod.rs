@@ -7,6 +7,7 @@ mod cloud_format;
 mod crc32;
 mod error;
 mod mesh;
+mod mesh_read;
 mod ply;
 mod surrogate_binary;
 mod surrogate_json;
@@ -20,6 +21,7 @@ pub use cloud_format::{parse_cloud, CloudFormat};
 pub use crc32::crc32;
 pub use error::{FormatError, SurrogateDefect};
 pub use mesh::TriangleMesh;
+pub use mesh_read::parse_triangle_mesh;
 pub use ply::{has_ply_magic, parse_ply, write_ply_points, PlyCloud};
 pub use surrogate_binary::{
     surrogate_from_binary, surrogate_to_binary, SURROGATE_BINARY_VERSION, SURROGATE_MAGIC,

@@ -5,12 +5,22 @@
 
 mod blob;
 mod cloud;
+mod collision;
+mod describe;
 mod error;
+mod joints;
+mod status;
 mod surrogate;
+mod topic;
 
 pub use cloud::{CloudMessage, SensorPose};
+pub use collision::{CollisionMessage, GuardVerdict, LinkClearance};
+pub use describe::describe;
 pub use error::MessageError;
+pub use joints::JointStateMessage;
+pub use status::NodeStatusMessage;
 pub use surrogate::{SurfaceMessage, SurrogateMessage};
+pub use topic::{check_name, TopicKey, TopicKind, Topics, ROOT};
 
 /// The schema version every message carries; decoders refuse other versions.
 pub const SCHEMA_VERSION: u16 = 1;
@@ -24,5 +34,13 @@ pub(crate) fn check_version(found: u16) -> Result<(), MessageError> {
             found,
             expected: SCHEMA_VERSION,
         })
+    }
+}
+
+/// Checks that every value of a decoded field is finite.
+pub(crate) fn check_finite(field: &'static str, values: &[f64]) -> Result<(), MessageError> {
+    match values.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(MessageError::NonFinite { field, index }),
+        None => Ok(()),
     }
 }

@@ -2,6 +2,7 @@
 //! scene and prints them beside the paper's numbers (markdown, for the README).
 
 mod alloc;
+mod latency;
 mod paper000;
 mod timing;
 
@@ -15,6 +16,8 @@ use clap::{Args, ValueEnum};
 pub enum Suite {
     /// Tables 1 and 2, the Figure 9 histograms and the Section 3 baseline.
     Surrogate,
+    /// End-to-end latency through a real fit node process over zenoh.
+    Latency,
 }
 
 #[derive(Debug, Args)]
@@ -30,10 +33,14 @@ pub struct BenchArgs {
     /// A fast smoke run: 2 configurations x 3 fits, small clouds only.
     #[arg(long)]
     pub quick: bool,
+    /// Seconds per row of the latency table.
+    #[arg(long, default_value_t = 10.0)]
+    pub seconds: f64,
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {
     match args.suite {
         Suite::Surrogate => paper000::run(&args),
+        Suite::Latency => latency::run(&args),
     }
 }

@@ -14,15 +14,11 @@ use std::time::Instant;
 pub struct FitArgs {
     /// Point cloud: .ply (ascii or binary), .xyz, .csv.
     pub input: PathBuf,
-    /// Control points along u and v, e.g. 20x20 or 30x12.
-    #[arg(long, default_value = "20x20")]
-    pub grid: String,
-    /// Viewing direction x,y,z; heights grow against it (the default looks down).
-    #[arg(long, default_value = "0,0,-1", allow_hyphen_values = true)]
-    pub dir: String,
     /// upper (points below the surface), lower (points above), or sandwich (both).
     #[arg(long, default_value = "upper")]
     pub side: Sides,
+    #[command(flatten)]
+    pub shape: SurrogateShapeArgs,
     /// Where to write the surrogate: .json, or anything else for the compact binary.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
@@ -32,21 +28,6 @@ pub struct FitArgs {
     /// Mesh subdivisions per cell triangle.
     #[arg(long, default_value_t = 4)]
     pub mesh_resolution: usize,
-    /// Reach the optimum of the linear program (tightest safe surface).
-    #[arg(long)]
-    pub tight: bool,
-    /// The paper's heuristic alone, without the lowering pass.
-    #[arg(long, conflicts_with = "tight")]
-    pub plain: bool,
-    /// Average the u-first and v-first reductions.
-    #[arg(long)]
-    pub symmetrize: bool,
-    /// Keep the whole rectangle instead of trimming cells without data.
-    #[arg(long)]
-    pub no_trim: bool,
-    /// Sub-cells per cell and direction in the one-pass reduction.
-    #[arg(long, default_value_t = 4)]
-    pub sub_cells: usize,
     /// Print the summary as one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -71,23 +52,56 @@ pub fn run(args: FitArgs) -> Result<()> {
 }
 
 fn options(args: &FitArgs) -> Result<FitOptions> {
-    let (cols, rows) = parse::grid(&args.grid)?;
-    let direction = parse::numbers::<3>(&args.dir, "direction")?;
-    Ok(FitOptions {
-        cols,
-        rows,
-        direction,
-        sides: args.side,
-        symmetrize: args.symmetrize,
-        trim: !args.no_trim,
-        tightness: match (args.tight, args.plain) {
-            (true, _) => Tightness::Optimal,
-            (_, true) => Tightness::Plain,
-            _ => Tightness::Lowered,
-        },
-        sub_cells: args.sub_cells.clamp(1, 64),
-        ..FitOptions::default()
-    })
+    args.shape.options(args.side)
+}
+
+/// How a surrogate is shaped: grid, direction, tightness, trimming. Shared by
+/// `shroud fit` and the `fit` node.
+#[derive(Debug, Clone, Args)]
+pub struct SurrogateShapeArgs {
+    /// Control points along u and v, e.g. 20x20 or 30x12.
+    #[arg(long, default_value = "20x20")]
+    pub grid: String,
+    /// Viewing direction x,y,z; heights grow against it (the default looks down).
+    #[arg(long, default_value = "0,0,-1", allow_hyphen_values = true)]
+    pub dir: String,
+    /// Reach the optimum of the linear program (tightest safe surface).
+    #[arg(long)]
+    pub tight: bool,
+    /// The paper's heuristic alone, without the lowering pass.
+    #[arg(long, conflicts_with = "tight")]
+    pub plain: bool,
+    /// Average the u-first and v-first reductions.
+    #[arg(long)]
+    pub symmetrize: bool,
+    /// Keep the whole rectangle instead of trimming cells without data.
+    #[arg(long)]
+    pub no_trim: bool,
+    /// Sub-cells per cell and direction in the one-pass reduction.
+    #[arg(long, default_value_t = 4)]
+    pub sub_cells: usize,
+}
+
+impl SurrogateShapeArgs {
+    pub fn options(&self, sides: Sides) -> Result<FitOptions> {
+        let (cols, rows) = parse::grid(&self.grid)?;
+        let direction = parse::numbers::<3>(&self.dir, "direction")?;
+        Ok(FitOptions {
+            cols,
+            rows,
+            direction,
+            sides,
+            symmetrize: self.symmetrize,
+            trim: !self.no_trim,
+            tightness: match (self.tight, self.plain) {
+                (true, _) => Tightness::Optimal,
+                (_, true) => Tightness::Plain,
+                _ => Tightness::Lowered,
+            },
+            sub_cells: self.sub_cells.clamp(1, 64),
+            ..FitOptions::default()
+        })
+    }
 }
 
 fn write_mesh(path: &std::path::Path, surrogate: &Surrogate, per_cell: usize) -> Result<()> {

@@ -1,9 +1,12 @@
 //! The `shroud` command line: one subcommand per job.
 
+mod blend;
 mod demo;
-mod fit;
+pub mod fit;
 mod query;
 mod sim;
+
+pub use fit::{certificate_line, SurrogateShapeArgs};
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -34,6 +37,19 @@ pub enum Command {
     Query(query::QueryArgs),
     /// Reproduce the paper's timing tables and measure ours.
     Bench(crate::bench::BenchArgs),
+    /// Run one node of the graph in this process (scanner, fit, guard, arm, ...),
+    /// or list the running nodes.
+    #[command(subcommand)]
+    Node(crate::node::NodeCommand),
+    /// Inspect the topics of a running graph: list, echo, hz.
+    #[command(subcommand)]
+    Topic(crate::introspect::TopicCommand),
+    /// Start a graph of nodes from a launch file and supervise it.
+    Launch(crate::launch::LaunchArgs),
+    /// Simulate a serial or CAN range sensor: a pty or serial port (serial/slcan), or a candump log.
+    SensorSim(crate::ingest::cli::SensorSimArgs),
+    /// Drop a child point cloud onto a parent and blend them (paper 001).
+    Blend(blend::BlendArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -43,5 +59,10 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Sim(args) => sim::run(args),
         Command::Query(args) => query::run(args),
         Command::Bench(args) => crate::bench::run(args),
+        Command::Node(command) => crate::node::run(command),
+        Command::Topic(command) => crate::introspect::run(command),
+        Command::Launch(args) => crate::launch::run(args),
+        Command::SensorSim(args) => crate::ingest::cli::run_sensor_sim(&args),
+        Command::Blend(args) => blend::run(&args),
     }
 }

@@ -15,11 +15,7 @@ pub fn read_vertices(
     layout: &VertexLayout,
 ) -> Result<PlyCloud, FormatError> {
     let vertex = &header.elements[layout.element];
-    let mut lines = BodyLines {
-        bytes,
-        pos: header.body_offset,
-        line: header.body_line - 1,
-    };
+    let mut lines = BodyLines::of(bytes, header);
     let truncated = |got, lines: &BodyLines| FormatError::PlyTruncatedBody {
         expected: vertex.count,
         got,
@@ -62,14 +58,28 @@ pub fn read_vertices(
 }
 
 /// Non-blank lines of the body with their 1-based line numbers.
-struct BodyLines<'a> {
+pub(super) struct BodyLines<'a> {
     bytes: &'a [u8],
     pos: usize,
     line: usize,
 }
 
 impl<'a> BodyLines<'a> {
-    fn next_record(&mut self) -> Result<Option<(usize, &'a str)>, FormatError> {
+    /// The lines of the body that follows `header` in `bytes`.
+    pub(super) fn of(bytes: &'a [u8], header: &Header) -> Self {
+        Self {
+            bytes,
+            pos: header.body_offset,
+            line: header.body_line - 1,
+        }
+    }
+
+    /// Byte offset of the next unread line.
+    pub(super) fn offset(&self) -> usize {
+        self.pos
+    }
+
+    pub(super) fn next_record(&mut self) -> Result<Option<(usize, &'a str)>, FormatError> {
         while self.pos < self.bytes.len() {
             let rest = &self.bytes[self.pos..];
             let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
@@ -89,7 +99,11 @@ impl<'a> BodyLines<'a> {
 }
 
 /// Checks that `tokens` are exactly one record of `element`, list lengths included.
-fn check_record_shape(element: &Element, tokens: &[&str], line: usize) -> Result<(), FormatError> {
+pub(super) fn check_record_shape(
+    element: &Element,
+    tokens: &[&str],
+    line: usize,
+) -> Result<(), FormatError> {
     let too_few = || FormatError::PlyBadAsciiRecord {
         line,
         reason: format!(
@@ -129,7 +143,7 @@ fn check_record_shape(element: &Element, tokens: &[&str], line: usize) -> Result
 }
 
 /// Token index of property `index`, walking list lengths before it.
-fn token_index(element: &Element, index: usize, tokens: &[&str]) -> usize {
+pub(super) fn token_index(element: &Element, index: usize, tokens: &[&str]) -> usize {
     let mut next = 0;
     for property in element.properties.iter().take(index) {
         let span = match property.kind {
@@ -151,9 +165,15 @@ fn token_index(element: &Element, index: usize, tokens: &[&str]) -> usize {
 /// shortest-representation writer round-trips bit for bit; other types go
 /// through f64 (exact for every integer type).
 fn parse_value(token: &str, ty: ScalarType, line: usize) -> Result<f32, FormatError> {
+    parse_number(token, ty, line).map(|v| v as f32)
+}
+
+/// A number of type `ty` at full precision: `float` tokens are parsed as f32 (and
+/// widened exactly), every other type as f64.
+pub(super) fn parse_number(token: &str, ty: ScalarType, line: usize) -> Result<f64, FormatError> {
     let parsed = match ty {
-        ScalarType::F32 => token.parse::<f32>().ok(),
-        _ => token.parse::<f64>().ok().map(|v| v as f32),
+        ScalarType::F32 => token.parse::<f32>().ok().map(f64::from),
+        _ => token.parse::<f64>().ok(),
     };
     parsed.ok_or_else(|| FormatError::PlyBadAsciiNumber {
         line,

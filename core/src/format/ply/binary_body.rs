@@ -9,7 +9,7 @@ use super::PlyCloud;
 use crate::format::FormatError;
 
 /// Why a record could not be walked.
-enum RecordError {
+pub(super) enum RecordError {
     /// The bytes end inside the record.
     Truncated,
     /// A list length that is negative or not an integer.
@@ -49,7 +49,7 @@ pub fn read_vertices(
 /// The position after all records of `element` from `pos`, or the failing record
 /// and why. Fixed-size records are skipped in one step, so a huge count of empty
 /// records costs nothing.
-fn skip_element(
+pub(super) fn skip_element(
     bytes: &[u8],
     mut pos: usize,
     element: &Element,
@@ -66,7 +66,8 @@ fn skip_element(
     // Every record holds a list length of at least one byte: the loop is bounded
     // by the body size.
     for record in 0..element.count {
-        pos = walk_record(bytes, pos, element, big_endian, |_, _| {}).map_err(|e| (record, e))?;
+        pos = walk_record(bytes, pos, element, big_endian, |_, _| {}, |_, _, _| {})
+            .map_err(|e| (record, e))?;
     }
     Ok(pos)
 }
@@ -137,7 +138,8 @@ fn read_varying_records(
                 values[k] = value;
             }
         };
-        pos = walk_record(bytes, pos, vertex, big_endian, store).map_err(|e| match e {
+        let walked = walk_record(bytes, pos, vertex, big_endian, store, |_, _, _| {});
+        pos = walked.map_err(|e| match e {
             RecordError::Truncated => FormatError::PlyTruncatedBody {
                 expected: vertex.count,
                 got: record,
@@ -156,13 +158,16 @@ fn read_varying_records(
 }
 
 /// Walks one record starting at `pos`, handing each scalar property's index and
-/// value to `store`; returns the position just after the record.
-fn walk_record(
+/// value to `store` and each list property's index, item type and item bytes
+/// (exactly `length * item.size()` of them) to `list`; returns the position just
+/// after the record.
+pub(super) fn walk_record(
     bytes: &[u8],
     mut pos: usize,
     element: &Element,
     big_endian: bool,
     mut store: impl FnMut(usize, f64),
+    mut list: impl FnMut(usize, ScalarType, &[u8]),
 ) -> Result<usize, RecordError> {
     for (index, property) in element.properties.iter().enumerate() {
         let data = bytes.get(pos..).ok_or(RecordError::Truncated)?;
@@ -185,9 +190,13 @@ fn walk_record(
                 let span = (length as usize)
                     .checked_mul(item.size())
                     .ok_or(RecordError::BadListLength(length))?;
-                pos = (pos + count.size())
-                    .checked_add(span)
-                    .ok_or(RecordError::Truncated)?;
+                let start = pos + count.size();
+                pos = start.checked_add(span).ok_or(RecordError::Truncated)?;
+                list(
+                    index,
+                    item,
+                    bytes.get(start..pos).ok_or(RecordError::Truncated)?,
+                );
             }
         }
     }

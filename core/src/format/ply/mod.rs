@@ -1,17 +1,20 @@
 //! PLY point clouds (`ascii`, `binary_little_endian`, `binary_big_endian`): the
 //! `vertex` element's x, y, z of any scalar type and an optional intensity; every
-//! other property and element is skipped.
+//! other property and element is skipped. Triangle meshes (vertices plus the
+//! `face` element) are read by [`parse_ply_mesh`] with the same record readers.
 
 mod ascii_body;
 mod binary_body;
 mod header;
 mod layout;
+mod mesh;
 mod scalar;
 #[cfg(test)]
 mod tests;
 mod write;
 
 pub use header::has_ply_magic;
+pub(in crate::format) use mesh::parse_ply_mesh;
 pub use write::write_ply_points;
 
 use crate::format::FormatError;

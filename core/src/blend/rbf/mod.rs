@@ -1,0 +1,13 @@
+//! The transition surface's implicit function (Zou et al., Section 5, Eq. 1): the
+//! triharmonic RBF `s(x) = p(x) + sum_i lambda_i |x - x_i|^3` with a linear
+//! polynomial `p`, fitted to on- and off-surface constraints (Carr et al. 2001), with
+//! greedy centre reduction and a dense solve.
+
+mod constraints;
+mod eval;
+mod greedy;
+mod solve;
+
+pub use constraints::{build_constraints, Constraints};
+pub use eval::Rbf;
+pub use greedy::{fit_greedy, GreedyReport, RbfParams};

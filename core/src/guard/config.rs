@@ -1,0 +1,88 @@
+//! How the guard judges clearances: the stop threshold, the largest clearance
+//! worth computing exactly, and how deep near cells are subdivided.
+
+use super::error::GuardError;
+use serde::{Deserialize, Serialize};
+
+/// Deepest refinement: `4^MAX_REFINE_DEPTH` sub-patches per cell at most.
+pub const MAX_REFINE_DEPTH: u32 = 6;
+
+/// Guard settings (metres, in the world units of the surrogate and the arm).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct GuardConfig {
+    /// `stop` is raised when any shape's clearance is below this (`>= 0`).
+    pub stop_distance: f64,
+    /// Clearances are capped here: a reported `max_report` means "at least
+    /// `max_report`". Larger values look at more cells (`> 0`, `>= stop_distance`).
+    pub max_report: f64,
+    /// Cells whose coarse bound is below `stop_distance` are subdivided into
+    /// 2x2, 4x4, ... Bézier sub-patches, up to `4^refine_depth` per cell
+    /// (`0..=MAX_REFINE_DEPTH`; 0 keeps the coarse cell bounds), until the
+    /// shape is known to be clear of `stop_distance` or not. Clearances below
+    /// `stop_distance` are therefore valid lower bounds but not the tightest.
+    pub refine_depth: u32,
+}
+
+impl Default for GuardConfig {
+    fn default() -> Self {
+        Self {
+            stop_distance: 0.05,
+            max_report: 0.2,
+            refine_depth: 3,
+        }
+    }
+}
+
+impl GuardConfig {
+    pub fn validate(&self) -> Result<(), GuardError> {
+        let bad = |m: String| Err(GuardError::BadConfig(m));
+        if !(self.stop_distance.is_finite() && self.stop_distance >= 0.0) {
+            return bad(format!(
+                "stop_distance must be finite and >= 0, got {}",
+                self.stop_distance
+            ));
+        }
+        if !(self.max_report.is_finite() && self.max_report > 0.0) {
+            return bad(format!(
+                "max_report must be finite and > 0, got {}",
+                self.max_report
+            ));
+        }
+        if self.max_report < self.stop_distance {
+            return bad(format!(
+                "max_report ({}) must be >= stop_distance ({})",
+                self.max_report, self.stop_distance
+            ));
+        }
+        if self.refine_depth > MAX_REFINE_DEPTH {
+            return bad(format!(
+                "refine_depth {} exceeds the maximum {MAX_REFINE_DEPTH}",
+                self.refine_depth
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_is_valid_and_bad_values_are_refused() {
+        assert!(GuardConfig::default().validate().is_ok());
+        let with = |f: fn(&mut GuardConfig)| {
+            let mut c = GuardConfig::default();
+            f(&mut c);
+            c.validate()
+        };
+        assert!(with(|c| c.stop_distance = -0.1).is_err());
+        assert!(with(|c| c.stop_distance = f64::NAN).is_err());
+        assert!(with(|c| c.max_report = 0.0).is_err());
+        assert!(with(|c| c.max_report = f64::INFINITY).is_err());
+        assert!(with(|c| c.max_report = 0.01).is_err());
+        assert!(with(|c| c.refine_depth = MAX_REFINE_DEPTH + 1).is_err());
+        assert!(with(|c| c.stop_distance = 0.0).is_ok());
+    }
+}

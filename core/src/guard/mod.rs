@@ -1,0 +1,52 @@
+//! Conservative collision envelopes for a manipulator against a surrogate sandwich.
+//!
+//! - [`ArmModel`]: a serial chain of links with sphere and capsule collision
+//!   shapes, parsed from TOML ([`ArmModel::from_toml_str`], schema in `schema`)
+//!   and validated; [`ArmModel::forward`] gives every link's world pose and the
+//!   shapes in the world ([`ArmPose`]).
+//! - URDF import of serial arms ([`ArmModel::from_urdf_str`]): collision
+//!   spheres, cylinders (as capsules) and boxes (as spheres).
+//! - [`Trajectory`]: joint-space waypoints with cosine-eased moves, for a
+//!   simulated arm.
+//! - [`Envelope`]: built once per surrogate; per kept cell a padded box that
+//!   holds every certified point of the cell (sandwich, upper-only: everything
+//!   below, lower-only: everything above), plus the Bézier patches refinement
+//!   subdivides.
+//! - [`check_arm`] / [`check_shapes`]: per shape a *lower bound* on the distance
+//!   to the cloud (0 when they may touch), per link the minimum, and `stop`
+//!   below [`GuardConfig::stop_distance`].
+//!
+//! The guard answers for the surrogate's domain only: points outside it (or in
+//! trimmed-away triangles, which hold no points) are not represented.
+//! [`ShapeClearance::leaves_domain`] says when a shape's reach leaves it.
+// `!(x > 0.0)` deliberately rejects NaN as well, which `x <= 0.0` would let through.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+mod arm;
+mod clearance;
+mod config;
+mod envelope;
+mod error;
+mod joint;
+mod kinematics;
+mod probe;
+mod report;
+mod schema;
+mod shape;
+mod trajectory;
+mod urdf;
+mod xml;
+
+#[cfg(test)]
+mod tests;
+
+pub use arm::{ArmModel, Link};
+pub use config::{GuardConfig, MAX_REFINE_DEPTH};
+pub use envelope::{CellBox, Envelope};
+pub use error::GuardError;
+pub use joint::{origin_from_xyz_rpy, Joint, JointKind, Limits};
+pub use kinematics::ArmPose;
+pub use report::{check_arm, check_shapes, GuardReport, ShapeClearance};
+pub use schema::ArmFile;
+pub use shape::{Capsule, Shape, Sphere, WorldShape};
+pub use trajectory::{Trajectory, Waypoint};

@@ -1,0 +1,22 @@
+//! Sensor ingest codecs: turning the bytes and frames of depth/range sensors into
+//! [`Scan`]s, and scans back into bytes for simulators. Pure: no I/O, no threads,
+//! no clocks. The wire protocols are specified in `PROTOCOLS.md` next to this file.
+//!
+//! - [`serial`]: a framed binary protocol for serial range sensors;
+//! - [`can`]: a CAN range-sensor protocol over classic 8-byte frames, plus the
+//!   SLCAN (Lawicel ASCII) and candump-log codecs that carry CAN frames.
+//!
+//! Every decoder is streaming, never panics on any input, returns named
+//! [`IngestError`]s and counts them per [`ErrorKind`] in [`DecoderStats`].
+// `!(x > 0.0)` deliberately rejects NaN as well, which `x <= 0.0` would let through.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+pub mod can;
+mod error;
+mod scan;
+pub mod serial;
+mod stats;
+
+pub use error::{ErrorKind, IngestError};
+pub use scan::Scan;
+pub use stats::DecoderStats;

@@ -1,0 +1,17 @@
+//! Why a launch file cannot be used.
+
+use thiserror::Error;
+
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum LaunchError {
+    #[error("launch file is not valid TOML for the launch schema: {0}")]
+    Syntax(String),
+    #[error("launch file declares no node")]
+    NoNodes,
+    #[error("two nodes are named {0:?}; node names must be unique")]
+    DuplicateNode(String),
+    #[error("node {node:?}: {reason}")]
+    Node { node: String, reason: String },
+    #[error("{field}: {reason}")]
+    Invalid { field: String, reason: String },
+}

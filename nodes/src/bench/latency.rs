@@ -1,0 +1,242 @@
+//! `shroud bench latency`: end-to-end latency of the fit node, from a cloud
+//! published to its surrogate received, through a real `shroud node fit` process
+//! and real zenoh sessions, at several cloud sizes and rates.
+
+use super::BenchArgs;
+use crate::transport::{unix_ns, OnOff, PayloadWriter, ZenohArgs};
+use anyhow::{Context, Result};
+use shroud_core::message::{CloudMessage, SurrogateMessage};
+use shroud_core::metrics::Percentiles;
+use shroud_sim::MovingSpheres;
+use std::process::{Child, Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+use zenoh::qos::CongestionControl;
+
+/// One row of the table.
+struct Row {
+    points: usize,
+    rate: f64,
+    published: u64,
+    received: u64,
+    latency: Option<shroud_core::metrics::LatencySummary>,
+    fit_p50: f64,
+    overhead_p50: f64,
+}
+
+/// What the subscriber collects.
+#[derive(Default)]
+struct Received {
+    latency_ms: Vec<f64>,
+    fit_ms: Vec<f64>,
+}
+
+pub fn run(args: &BenchArgs) -> Result<()> {
+    let sizes: &[usize] = if args.quick {
+        &[30_000]
+    } else {
+        &[30_000, 300_000]
+    };
+    let rates: &[f64] = if args.quick { &[10.0] } else { &[10.0, 30.0] };
+    let seconds = if args.quick { 3.0 } else { args.seconds };
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(1)
+        .enable_all()
+        .build()?;
+    let mut rows = Vec::new();
+    for &points in sizes {
+        for &rate in rates {
+            let row = runtime.block_on(measure(points, rate, seconds))?;
+            eprintln!("measured {} points at {} Hz", row.points, row.rate);
+            rows.push(row);
+        }
+    }
+    print_table(&rows, seconds);
+    Ok(())
+}
+
+async fn measure(points: usize, rate: f64, seconds: f64) -> Result<Row> {
+    let namespace = format!("bench-{}", std::process::id());
+    let hub = ZenohArgs {
+        namespace: namespace.clone(),
+        mode: "peer".into(),
+        connect: vec![],
+        listen: vec!["tcp/127.0.0.1:0".into()],
+        multicast: Some(OnOff::Off),
+        shm: OnOff::On,
+        zenoh_config: None,
+    };
+    let session = hub.open().await?;
+    let endpoint = session
+        .info()
+        .locators()
+        .await
+        .first()
+        .map(|l| l.to_string())
+        .context("no local endpoint")?;
+    let mut fit = FitProcess::start(&endpoint, &namespace)?;
+    let received = Arc::new(Mutex::new(Received::default()));
+    let sink = received.clone();
+    let _sub = session
+        .declare_subscriber(format!("shroud/{namespace}/surrogate/bench"))
+        .callback(move |sample| {
+            let now = unix_ns();
+            if let Ok((m, _)) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()) {
+                let mut r = sink.lock().unwrap_or_else(|p| p.into_inner());
+                r.latency_ms
+                    .push(now.saturating_sub(m.source_stamp_ns) as f64 / 1e6);
+                r.fit_ms.push(m.fit_ns as f64 / 1e6);
+            }
+        })
+        .await
+        .map_err(|e| anyhow::anyhow!("subscribe: {e}"))?;
+    let publisher = session
+        .declare_publisher(format!("shroud/{namespace}/cloud/bench"))
+        .congestion_control(CongestionControl::Drop)
+        .await
+        .map_err(|e| anyhow::anyhow!("publisher: {e}"))?;
+    let writer = PayloadWriter::new(true, 4 * (points * 12 + 4096));
+    // Frames are generated ahead so that the publisher's clock measures transport
+    // and fitting only, not the simulator.
+    let scene = MovingSpheres {
+        points,
+        ..MovingSpheres::default()
+    };
+    let frames: Vec<Vec<[f32; 3]>> = (0..20)
+        .map(|i| scene.generate(i as f64 * 0.1))
+        .collect::<Result<_, _>>()?;
+    wait_until_fitting(&publisher, &writer, &frames[0], &received).await?;
+    *received.lock().unwrap_or_else(|p| p.into_inner()) = Received::default();
+    let period = Duration::from_secs_f64(1.0 / rate);
+    let start = Instant::now();
+    let mut published = 0u64;
+    while start.elapsed().as_secs_f64() < seconds {
+        let frame = &frames[published as usize % frames.len()];
+        let msg = CloudMessage::new(unix_ns(), published, "bench", Default::default(), frame);
+        publisher
+            .put(writer.payload(msg.to_bytes()?))
+            .await
+            .map_err(|e| anyhow::anyhow!("put: {e}"))?;
+        published += 1;
+        let next = start + period * published as u32;
+        tokio::time::sleep_until(next.into()).await;
+    }
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    fit.stop();
+    let r = std::mem::take(&mut *received.lock().unwrap_or_else(|p| p.into_inner()));
+    let _ = session.close().await;
+    let mut lat = Percentiles::new(r.latency_ms.len().max(1));
+    let mut fit_p = Percentiles::new(r.fit_ms.len().max(1));
+    let mut over = Percentiles::new(r.fit_ms.len().max(1));
+    for (l, f) in r.latency_ms.iter().zip(&r.fit_ms) {
+        lat.push(*l);
+        fit_p.push(*f);
+        over.push(l - f);
+    }
+    Ok(Row {
+        points,
+        rate,
+        published,
+        received: r.latency_ms.len() as u64,
+        latency: lat.summary(),
+        fit_p50: fit_p.quantile(0.5).unwrap_or(f64::NAN),
+        overhead_p50: over.quantile(0.5).unwrap_or(f64::NAN),
+    })
+}
+
+/// Publishes a warm-up cloud every 100 ms until the fitter answers (it may
+/// still be connecting), for at most 30 s.
+async fn wait_until_fitting(
+    publisher: &zenoh::pubsub::Publisher<'_>,
+    writer: &PayloadWriter,
+    frame: &[[f32; 3]],
+    received: &Arc<Mutex<Received>>,
+) -> Result<()> {
+    let start = Instant::now();
+    while received
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .latency_ms
+        .len()
+        < 3
+    {
+        anyhow::ensure!(
+            start.elapsed() < Duration::from_secs(30),
+            "the fit node never answered"
+        );
+        let msg = CloudMessage::new(unix_ns(), u64::MAX, "warmup", Default::default(), frame);
+        publisher
+            .put(writer.payload(msg.to_bytes()?))
+            .await
+            .map_err(|e| anyhow::anyhow!("put: {e}"))?;
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    Ok(())
+}
+
+/// The fit node under test, as a child process.
+struct FitProcess(Child);
+
+impl FitProcess {
+    fn start(endpoint: &str, namespace: &str) -> Result<Self> {
+        let exe = std::env::current_exe()?;
+        let child = Command::new(exe)
+            .args([
+                "node",
+                "fit",
+                "--input",
+                "bench",
+                "--connect",
+                endpoint,
+                "--multicast",
+                "off",
+            ])
+            .args(["--namespace", namespace])
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .spawn()
+            .context("cannot start the fit node")?;
+        Ok(Self(child))
+    }
+
+    fn stop(&mut self) {
+        // SAFETY: kill(2) on our own child.
+        unsafe {
+            libc::kill(self.0.id() as libc::pid_t, libc::SIGTERM);
+        }
+        let _ = self.0.wait();
+    }
+}
+
+impl Drop for FitProcess {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn print_table(rows: &[Row], seconds: f64) {
+    println!("End-to-end latency, cloud published -> surrogate received ({seconds} s per row, separate fit process, zenoh peer on loopback, shared memory)\n");
+    println!("| points | rate | published | received | dropped | latency p50 | latency p99 | fit p50 | p50 latency - fit |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for r in rows {
+        let (p50, p99) = r
+            .latency
+            .map(|l| (l.p50, l.p99))
+            .unwrap_or((f64::NAN, f64::NAN));
+        let dropped = r.published.saturating_sub(r.received);
+        println!(
+            "| {}K | {} Hz | {} | {} | {} ({:.1}%) | {:.2} ms | {:.2} ms | {:.2} ms | {:.2} ms |",
+            r.points / 1000,
+            r.rate,
+            r.published,
+            r.received,
+            dropped,
+            100.0 * dropped as f64 / r.published.max(1) as f64,
+            p50,
+            p99,
+            r.fit_p50,
+            r.overhead_p50
+        );
+    }
+}

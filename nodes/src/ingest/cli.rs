@@ -1,0 +1,265 @@
+//! `shroud sensor-sim`: a simulated range sensor streaming a scene as the
+//! serial protocol or SLCAN to a pseudo-terminal (or an existing port), or
+//! writing a candump log.
+
+use super::pty::Pty;
+use super::sim::{CandumpWriter, ScanSink, SerialSensorWriter, SlcanWriter};
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use shroud_core::ingest::can::{CanSensorConfig, MAX_CAN_POINTS, MAX_EXTENDED_ID, MAX_STANDARD_ID};
+use shroud_core::ingest::serial::{PointEncoding, SerialEncoder, MAX_FRAME_POINTS};
+use shroud_core::ingest::Scan;
+use shroud_sim::Scene;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+
+/// What the simulated sensor speaks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum SimFormat {
+    /// The serial range-sensor protocol (binary frames).
+    Serial,
+    /// The CAN range-sensor protocol through an SLCAN (Lawicel ASCII) adapter.
+    Slcan,
+    /// The CAN range-sensor protocol as a candump log file (written as fast as possible).
+    Candump,
+}
+
+/// Coordinates on the serial wire.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum SimEncoding {
+    /// f32 metres.
+    F32,
+    /// i32 millimetres.
+    I32mm,
+    /// i16 millimetres (±32.767 m).
+    I16mm,
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct SensorSimArgs {
+    /// serial or slcan (to a pseudo-terminal, or --port), or candump (to --output).
+    #[arg(long, value_enum, default_value_t = SimFormat::Serial)]
+    pub format: SimFormat,
+    /// Write to this serial port instead of creating a pseudo-terminal.
+    #[arg(long)]
+    pub port: Option<String>,
+    /// Baud rate of --port.
+    #[arg(long, default_value_t = 115_200)]
+    pub baud: u32,
+    /// The candump log to write.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// moving-spheres, terrain or table-top.
+    #[arg(long, default_value = "moving-spheres")]
+    pub scene: String,
+    /// Points a scan.
+    #[arg(long, default_value_t = 2000)]
+    pub points: usize,
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Scans a second (the scene's time advances by 1/rate a scan).
+    #[arg(long, default_value_t = 10.0)]
+    pub rate: f64,
+    /// Scans to send; 0 means until interrupted (serial and slcan only).
+    #[arg(long, default_value_t = 0)]
+    pub scans: u64,
+    /// Serial coordinate encoding.
+    #[arg(long, value_enum, default_value_t = SimEncoding::F32)]
+    pub encoding: SimEncoding,
+    /// Points a serial frame carries (1..=1024).
+    #[arg(long, default_value_t = 256)]
+    pub points_per_frame: usize,
+    /// CAN id of the sensor's START message (hex with 0x, or decimal).
+    #[arg(long, default_value = "0x300", value_parser = parse_can_id)]
+    pub can_id: u32,
+    /// Use 29-bit CAN identifiers.
+    #[arg(long)]
+    pub extended: bool,
+    /// Interface name written in the candump log.
+    #[arg(long, default_value = "can0")]
+    pub interface: String,
+    /// Corrupt every n-th scan (serial, slcan), to exercise a reader's error
+    /// handling; 0 = never.
+    #[arg(long, default_value_t = 0)]
+    pub corrupt_every: u64,
+}
+
+impl Default for SensorSimArgs {
+    fn default() -> Self {
+        Self {
+            format: SimFormat::Serial,
+            port: None,
+            baud: 115_200,
+            output: None,
+            scene: "moving-spheres".into(),
+            points: 2000,
+            seed: 1,
+            rate: 10.0,
+            scans: 0,
+            encoding: SimEncoding::F32,
+            points_per_frame: 256,
+            can_id: 0x300,
+            extended: false,
+            interface: "can0".into(),
+            corrupt_every: 0,
+        }
+    }
+}
+
+fn parse_can_id(s: &str) -> Result<u32, String> {
+    let parsed = match s.strip_prefix("0x").or_else(|| s.strip_prefix("0X")) {
+        Some(hex) => u32::from_str_radix(hex, 16),
+        None => s.parse(),
+    };
+    parsed.map_err(|e| format!("bad CAN id {s:?}: {e}"))
+}
+
+/// Runs the simulator until `--scans` are sent (or forever): prints where it
+/// writes, then streams.
+pub fn run_sensor_sim(args: &SensorSimArgs) -> Result<()> {
+    let never = AtomicBool::new(false);
+    run_sensor_sim_with(args, &never, &mut |target| {
+        println!(
+            "sensor-sim: {:?} sensor on {}",
+            args.format,
+            target.display()
+        );
+        let _ = std::io::stdout().flush();
+    })
+}
+
+/// [`run_sensor_sim`] with a stop flag and a callback told the path written
+/// to (the pty slave, the port, or the log) before the first scan.
+pub fn run_sensor_sim_with(
+    args: &SensorSimArgs,
+    stop: &AtomicBool,
+    ready: &mut dyn FnMut(&Path),
+) -> Result<()> {
+    let scene = Scene::by_name(&args.scene, args.points, args.seed)?;
+    if !(args.rate.is_finite() && args.rate > 0.0) {
+        bail!("--rate must be positive, got {}", args.rate);
+    }
+    let sensor = CanSensorConfig {
+        base_id: args.can_id,
+        extended: args.extended,
+    };
+    if args.format != SimFormat::Serial {
+        let max = if args.extended {
+            MAX_EXTENDED_ID
+        } else {
+            MAX_STANDARD_ID
+        };
+        if args.can_id.checked_add(3).is_none_or(|last| last > max) {
+            bail!(
+                "--can-id {:#x}: the sensor's 4 ids must fit in {max:#x}",
+                args.can_id
+            );
+        }
+        if args.points > MAX_CAN_POINTS {
+            bail!(
+                "a CAN scan carries at most {MAX_CAN_POINTS} points, --points is {}",
+                args.points
+            );
+        }
+    }
+    if args.format == SimFormat::Serial && !(1..=MAX_FRAME_POINTS).contains(&args.points_per_frame)
+    {
+        bail!("--points-per-frame must be in 1..={MAX_FRAME_POINTS}");
+    }
+    let encoding = match args.encoding {
+        SimEncoding::F32 => PointEncoding::F32Metres,
+        SimEncoding::I32mm => PointEncoding::I32Millimetres,
+        SimEncoding::I16mm => PointEncoding::I16Millimetres,
+    };
+    let encoder = SerialEncoder::new(encoding, args.points_per_frame);
+    if args.format == SimFormat::Candump {
+        let Some(path) = &args.output else {
+            bail!("--format candump needs --output FILE");
+        };
+        if args.scans == 0 {
+            bail!("--format candump needs --scans N (the log is written as fast as possible)");
+        }
+        let file = std::fs::File::create(path)
+            .with_context(|| format!("cannot create {}", path.display()))?;
+        let mut sink = CandumpWriter::new(std::io::BufWriter::new(file), sensor, &args.interface);
+        ready(path);
+        return stream(&scene, args, stop, &mut sink, false);
+    }
+    let (out, _pty): (Box<dyn Write + Send>, Option<Pty>) = match &args.port {
+        Some(port) => {
+            let port = serialport::new(port, args.baud)
+                .timeout(Duration::from_millis(50))
+                .open()
+                .with_context(|| format!("cannot open serial port {port}"))?;
+            ready(Path::new(args.port.as_deref().unwrap_or_default()));
+            (Box::new(port), None)
+        }
+        None => {
+            let pty = Pty::open().context("cannot create a pseudo-terminal")?;
+            pty.set_nonblocking()?;
+            let master = pty.master_clone()?;
+            ready(pty.slave_path());
+            (Box::new(master), Some(pty))
+        }
+    };
+    let mut sink: Box<dyn ScanSink> = match args.format {
+        SimFormat::Serial => {
+            let mut w = SerialSensorWriter::new(out, encoder);
+            w.corrupt_every = args.corrupt_every;
+            Box::new(w)
+        }
+        _ => {
+            let mut w = SlcanWriter::new(out, sensor);
+            w.corrupt_every = args.corrupt_every;
+            Box::new(w)
+        }
+    };
+    stream(&scene, args, stop, sink.as_mut(), true)
+}
+
+/// Generates and writes scans: paced at `--rate` with wall-clock stamps, or
+/// (for logs) unpaced with stamps `1/rate` apart.
+fn stream(
+    scene: &Scene,
+    args: &SensorSimArgs,
+    stop: &AtomicBool,
+    sink: &mut dyn ScanSink,
+    paced: bool,
+) -> Result<()> {
+    let period = Duration::from_secs_f64(1.0 / args.rate);
+    let start = Instant::now();
+    let start_ns = SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos() as u64);
+    let mut k: u64 = 0;
+    while (args.scans == 0 || k < args.scans) && !stop.load(std::sync::atomic::Ordering::Relaxed) {
+        let time = k as f64 / args.rate;
+        let points = scene.generate(time)?;
+        let stamp_ns = if paced {
+            SystemTime::now()
+                .duration_since(UNIX_EPOCH)
+                .map_or(0, |d| d.as_nanos() as u64)
+        } else {
+            start_ns + (time * 1e9) as u64
+        };
+        sink.write_scan(&Scan::new(k as u32, stamp_ns, points))
+            .with_context(|| format!("writing scan {k}"))?;
+        k += 1;
+        if paced {
+            let due = start + period.mul_f64(k as f64);
+            super::backoff::sleep_unless_stopped(
+                due.saturating_duration_since(Instant::now()),
+                stop,
+            );
+        }
+    }
+    if sink.dropped() > 0 {
+        tracing::warn!(
+            "sensor-sim: {} bytes dropped (nobody was reading)",
+            sink.dropped()
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,96 @@
+//! SocketCAN source: a Linux CAN interface (`can0`, `vcan0`) through the
+//! `socketcan` crate. Error frames are counted and skipped.
+
+use super::{CanSource, SourceError};
+use shroud_core::ingest::can::CanFrame;
+use socketcan::{CanSocket, EmbeddedFrame, Frame, Socket};
+use std::io;
+use std::time::Duration;
+
+/// A bound raw CAN socket.
+#[derive(Debug)]
+pub struct SocketCanSource {
+    interface: String,
+    socket: CanSocket,
+    /// Error frames the controller reported (bus-off, error passive, ...).
+    pub error_frames: u64,
+}
+
+impl SocketCanSource {
+    /// Opens `interface` (fails with [`SourceError::Open`] if it does not exist).
+    pub fn open(interface: &str) -> Result<Self, SourceError> {
+        let socket = CanSocket::open(interface).map_err(|error| SourceError::Open {
+            source_name: format!("socketcan:{interface}"),
+            error,
+        })?;
+        Ok(Self {
+            interface: interface.to_owned(),
+            socket,
+            error_frames: 0,
+        })
+    }
+
+    /// Sends one frame (for simulators writing to a vcan interface).
+    pub fn send(&self, frame: &CanFrame) -> io::Result<()> {
+        self.socket.write_frame(&to_socketcan(frame)?)
+    }
+}
+
+impl CanSource for SocketCanSource {
+    fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, SourceError> {
+        match self.socket.read_frame_timeout(timeout) {
+            Ok(frame) => Ok(from_socketcan(&frame).or_else(|| {
+                self.error_frames += 1;
+                tracing::debug!(interface = %self.interface, "CAN error frame: {frame:?}");
+                None
+            })),
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    io::ErrorKind::TimedOut
+                        | io::ErrorKind::WouldBlock
+                        | io::ErrorKind::Interrupted
+                ) =>
+            {
+                Ok(None)
+            }
+            Err(error) => Err(SourceError::Disconnected {
+                source_name: self.name(),
+                error,
+            }),
+        }
+    }
+
+    fn name(&self) -> String {
+        format!("socketcan:{}", self.interface)
+    }
+}
+
+/// Our frame from a socketcan one; `None` for an error frame.
+pub fn from_socketcan(frame: &socketcan::CanFrame) -> Option<CanFrame> {
+    let (id, extended) = (frame.raw_id(), frame.is_extended());
+    match frame {
+        socketcan::CanFrame::Data(_) => CanFrame::new(id, extended, frame.data()).ok(),
+        socketcan::CanFrame::Remote(_) => CanFrame::remote(id, extended, frame.dlc() as u8).ok(),
+        socketcan::CanFrame::Error(_) => None,
+    }
+}
+
+/// A socketcan frame from ours.
+pub fn to_socketcan(frame: &CanFrame) -> io::Result<socketcan::CanFrame> {
+    let id: socketcan::Id = if frame.extended {
+        socketcan::ExtendedId::new(frame.id).map(Into::into)
+    } else {
+        u16::try_from(frame.id)
+            .ok()
+            .and_then(socketcan::StandardId::new)
+            .map(Into::into)
+    }
+    .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "CAN id out of range"))?;
+    let built = if frame.remote {
+        socketcan::CanFrame::new_remote(id, frame.len.into())
+    } else {
+        socketcan::CanFrame::new(id, frame.payload())
+    };
+    built.ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "bad CAN frame"))
+}

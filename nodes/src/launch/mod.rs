@@ -1,0 +1,61 @@
+//! `shroud launch FILE`: starts every node of a launch file as a child process,
+//! prefixes their logs, restarts failed nodes by policy, prints a live summary,
+//! and stops them all on Ctrl-C or SIGTERM. Children die with the launcher even
+//! when it is killed outright (`PR_SET_PDEATHSIG`).
+
+mod child;
+mod monitor;
+mod supervise;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use shroud_core::launch::LaunchFile;
+use std::path::PathBuf;
+use std::time::Duration;
+
+#[derive(Debug, Args)]
+pub struct LaunchArgs {
+    /// The launch file (TOML; schema in launch/README.md).
+    pub file: PathBuf,
+    /// Stop the whole graph after this many seconds (0: run until Ctrl-C).
+    #[arg(long, default_value_t = 0.0)]
+    pub duration: f64,
+    /// Log filter handed to every node.
+    #[arg(long, default_value = "info,zenoh=warn")]
+    pub node_log: String,
+    /// Print the endpoint nodes connect to and exit (for debugging the file).
+    #[arg(long)]
+    pub check: bool,
+}
+
+pub fn run(args: LaunchArgs) -> Result<()> {
+    anyhow::ensure!(
+        args.duration.is_finite() && args.duration >= 0.0,
+        "--duration must be >= 0"
+    );
+    let text = std::fs::read_to_string(&args.file)
+        .with_context(|| format!("cannot read launch file {}", args.file.display()))?;
+    let file = LaunchFile::from_toml_str(&text)
+        .with_context(|| format!("launch file {}", args.file.display()))?;
+    if args.check {
+        for node in &file.nodes {
+            println!(
+                "{}: shroud node {} {}",
+                node.name,
+                node.run,
+                node.args.join(" ")
+            );
+        }
+        return Ok(());
+    }
+    // One worker thread (zenoh needs the multi-thread scheduler): the children
+    // are spawned from it, and the kernel's parent-death signal is tied to the
+    // thread that forked them, which lives as long as the runtime.
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(1)
+        .enable_all()
+        .build()
+        .context("cannot start the async runtime")?;
+    let duration = (args.duration > 0.0).then(|| Duration::from_secs_f64(args.duration));
+    runtime.block_on(supervise::run_graph(file, args.node_log, duration))
+}

@@ -1,0 +1,199 @@
+//! The supervisor: one task per node that starts it, waits for it, and restarts
+//! it by policy; the graph stops on a signal, after `--duration`, when a
+//! critical node is done, or when every node is done.
+
+use super::child::{self, Wiring};
+use super::monitor;
+use crate::transport::{shutdown_signal, OnOff, ZenohArgs};
+use anyhow::Result;
+use shroud_core::launch::{Backoff, LaunchFile, NodeSpec, RestartDecision};
+use std::time::{Duration, Instant};
+use tokio::sync::watch;
+use tokio::task::JoinSet;
+
+/// How a node's supervision ended.
+#[derive(Debug)]
+struct Outcome {
+    name: String,
+    critical: bool,
+    kind: OutcomeKind,
+}
+
+#[derive(Debug, PartialEq)]
+enum OutcomeKind {
+    /// Stopped by the launcher.
+    Stopped,
+    /// Exited and the policy said not to restart.
+    Finished { success: bool },
+    /// Failed more often in a row than allowed.
+    GaveUp,
+}
+
+pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>) -> Result<()> {
+    let z = &file.zenoh;
+    let hub = ZenohArgs {
+        namespace: file.namespace.clone(),
+        mode: z.mode.clone(),
+        connect: z.connect.clone(),
+        listen: z.listen.clone(),
+        multicast: Some(if z.multicast { OnOff::On } else { OnOff::Off }),
+        shm: if z.shm { OnOff::On } else { OnOff::Off },
+        zenoh_config: None,
+    };
+    let session = hub.open().await?;
+    let mut connect: Vec<String> = session
+        .info()
+        .locators()
+        .await
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    connect.extend(z.connect.iter().cloned());
+    println!(
+        "[launch] namespace {:?}, nodes connect to {}",
+        file.namespace,
+        connect.join(", ")
+    );
+    let wiring = Wiring {
+        namespace: file.namespace.clone(),
+        mode: z.mode.clone(),
+        connect,
+        multicast: z.multicast,
+        shm: z.shm,
+        log,
+    };
+    let grace = Duration::from_secs_f64(file.shutdown_grace_s);
+    let (stop_tx, stop_rx) = watch::channel(false);
+    let mut nodes = JoinSet::new();
+    for spec in &file.nodes {
+        nodes.spawn(supervise(
+            spec.clone(),
+            wiring.clone(),
+            stop_rx.clone(),
+            grace,
+        ));
+    }
+    let monitor = file.summary.enabled.then(|| {
+        tokio::spawn(monitor::run(
+            session.clone(),
+            hub.topics(),
+            file.summary.period_s,
+        ))
+    });
+    let deadline = async {
+        match duration {
+            Some(d) => tokio::time::sleep(d).await,
+            None => std::future::pending().await,
+        }
+    };
+    tokio::pin!(deadline);
+    let mut failed = Vec::new();
+    loop {
+        tokio::select! {
+            signal = shutdown_signal() => {
+                println!("[launch] {signal}: stopping every node");
+                break;
+            }
+            _ = &mut deadline => {
+                println!("[launch] --duration reached: stopping every node");
+                break;
+            }
+            joined = nodes.join_next() => {
+                let Some(joined) = joined else {
+                    println!("[launch] every node has stopped");
+                    break;
+                };
+                let outcome = joined?;
+                if matches!(outcome.kind, OutcomeKind::GaveUp | OutcomeKind::Finished { success: false }) {
+                    failed.push(outcome.name.clone());
+                }
+                if outcome.critical {
+                    println!("[launch] critical node {} is done: stopping the graph", outcome.name);
+                    break;
+                }
+            }
+        }
+    }
+    let _ = stop_tx.send(true);
+    while let Some(joined) = nodes.join_next().await {
+        let outcome = joined?;
+        if matches!(
+            outcome.kind,
+            OutcomeKind::GaveUp | OutcomeKind::Finished { success: false }
+        ) {
+            failed.push(outcome.name);
+        }
+    }
+    if let Some(m) = monitor {
+        m.abort();
+    }
+    let _ = session.close().await;
+    anyhow::ensure!(failed.is_empty(), "nodes failed: {}", failed.join(", "));
+    println!("[launch] all nodes stopped cleanly");
+    Ok(())
+}
+
+async fn supervise(
+    spec: NodeSpec,
+    wiring: Wiring,
+    mut stop: watch::Receiver<bool>,
+    grace: Duration,
+) -> Outcome {
+    let mut backoff = Backoff::new(&spec);
+    let outcome = |kind| Outcome {
+        name: spec.name.clone(),
+        critical: spec.critical,
+        kind,
+    };
+    loop {
+        if *stop.borrow() {
+            return outcome(OutcomeKind::Stopped);
+        }
+        let started = Instant::now();
+        let success = match child::spawn(&spec, &wiring) {
+            Ok(mut process) => {
+                println!(
+                    "[launch] started {} (pid {})",
+                    spec.name,
+                    process.id().unwrap_or(0)
+                );
+                tokio::select! {
+                    status = process.wait() => {
+                        let status = status.map(|s| s.to_string()).unwrap_or_else(|e| e.to_string());
+                        println!("[launch] {} exited: {status}", spec.name);
+                        status == "exit status: 0"
+                    }
+                    _ = stop.changed() => {
+                        child::stop(&mut process, &spec.name, grace).await;
+                        return outcome(OutcomeKind::Stopped);
+                    }
+                }
+            }
+            Err(e) => {
+                eprintln!("[launch] {e:#}");
+                false
+            }
+        };
+        match backoff.on_exit(success, started.elapsed()) {
+            RestartDecision::RestartAfter(delay) => {
+                println!(
+                    "[launch] restarting {} in {:.2} s",
+                    spec.name,
+                    delay.as_secs_f64()
+                );
+                tokio::select! {
+                    _ = tokio::time::sleep(delay) => {}
+                    _ = stop.changed() => return outcome(OutcomeKind::Stopped),
+                }
+            }
+            RestartDecision::Stop => return outcome(OutcomeKind::Finished { success }),
+            RestartDecision::GiveUp { failures } => {
+                eprintln!(
+                    "[launch] giving up on {} after {failures} failures in a row",
+                    spec.name
+                );
+                return outcome(OutcomeKind::GaveUp);
+            }
+        }
+    }
+}

@@ -1,0 +1,146 @@
+//! The `fit` node: certified surrogates from the clouds of one stream. The
+//! subscriber hands payloads to a bounded drop-oldest mailbox; one worker thread
+//! decodes, fits with warm start, and publishes.
+
+use super::runtime::{run_node, NodeCommon, NodeContext};
+use crate::cli::SurrogateShapeArgs;
+use crate::transport::{unix_ns, Mailbox};
+use anyhow::Result;
+use clap::Args;
+use shroud_core::message::{CloudMessage, SurrogateMessage, TopicKind};
+use shroud_core::metrics::Percentiles;
+use shroud_core::surrogate::{Sides, SurrogateFitter};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use zenoh::bytes::ZBytes;
+use zenoh::qos::CongestionControl;
+use zenoh::Wait;
+
+#[derive(Debug, Clone, Args)]
+pub struct FitNodeArgs {
+    #[command(flatten)]
+    pub common: NodeCommon,
+    /// Cloud stream to fit (`shroud/<ns>/cloud/<input>`).
+    #[arg(long, default_value = "sim")]
+    pub input: String,
+    /// Surrogate stream to publish (`shroud/<ns>/surrogate/<output>`); default: the input's name.
+    #[arg(long)]
+    pub output: Option<String>,
+    /// upper, lower, or sandwich (the guard needs the sandwich).
+    #[arg(long, default_value = "sandwich")]
+    pub side: Sides,
+    #[command(flatten)]
+    pub shape: SurrogateShapeArgs,
+    /// Clouds waiting for the fitter at most; older ones are dropped and counted.
+    #[arg(long, default_value_t = 1)]
+    pub queue: usize,
+}
+
+/// A received cloud payload with its arrival time.
+struct Arrival {
+    payload: ZBytes,
+    key: String,
+    received_ns: u64,
+}
+
+pub fn run(args: FitNodeArgs) -> Result<()> {
+    let options = args.shape.options(args.side)?;
+    let fitter = SurrogateFitter::new(options)?;
+    anyhow::ensure!((1..=64).contains(&args.queue), "--queue must be 1 to 64");
+    let common = args.common.clone();
+    run_node(&common, "fit", move |ctx| serve(ctx, args, fitter))
+}
+
+fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) -> Result<()> {
+    let input = ctx.key(TopicKind::Cloud, &args.input)?;
+    let output = ctx.key(
+        TopicKind::Surrogate,
+        args.output.as_deref().unwrap_or(&args.input),
+    )?;
+    let mailbox = Arc::new(Mailbox::new(args.queue));
+    let inbox = mailbox.clone();
+    let _subscriber = ctx
+        .session
+        .declare_subscriber(&input)
+        .callback(move |sample| {
+            inbox.push(Arrival {
+                payload: sample.payload().clone(),
+                key: sample.key_expr().to_string(),
+                received_ns: unix_ns(),
+            });
+        })
+        .wait()
+        .map_err(|e| anyhow::anyhow!("subscribe {input}: {e}"))?;
+    // Surrogates are small and each one supersedes the last: a slow consumer
+    // should lose an old one rather than stall the fitter (drop), but the guard
+    // must see fresh ones first (real-time priority, express).
+    let publisher = ctx
+        .session
+        .declare_publisher(&output)
+        .congestion_control(CongestionControl::Drop)
+        .priority(zenoh::qos::Priority::RealTime)
+        .express(true)
+        .wait()
+        .map_err(|e| anyhow::anyhow!("publisher {output}: {e}"))?;
+    tracing::info!(%input, %output, "fitting");
+    let mut fit_ms = Percentiles::new(256);
+    let mut latency_ms = Percentiles::new(256);
+    while !ctx.stopping() {
+        ctx.metrics
+            .set_counter("dropped_backlog", mailbox.dropped());
+        let Some(arrival) = mailbox.pop(Duration::from_millis(100)) else {
+            continue;
+        };
+        ctx.metrics.add("received", 1);
+        let bytes = arrival.payload.to_bytes();
+        let cloud = match CloudMessage::from_bytes(&bytes).and_then(|c| Ok((c.point_array()?, c))) {
+            Ok(decoded) => decoded,
+            Err(e) => {
+                ctx.drop_malformed(&arrival.key, &e);
+                continue;
+            }
+        };
+        let (points, msg) = cloud;
+        let start = Instant::now();
+        let surrogate = match fitter.fit(&points) {
+            Ok(s) => s,
+            Err(e) => {
+                ctx.metrics.add("fit_errors", 1);
+                tracing::warn!(sequence = msg.sequence, "cloud not fitted: {e}");
+                continue;
+            }
+        };
+        let fit_ns = start.elapsed().as_nanos() as u64;
+        let out = SurrogateMessage::from_surrogate(
+            &surrogate,
+            msg.stamp_ns,
+            msg.sequence,
+            &msg.source,
+            fit_ns,
+        );
+        match out.to_bytes() {
+            Ok(bytes) => match publisher.put(bytes).wait() {
+                Ok(()) => ctx.metrics.add("published", 1),
+                Err(e) => {
+                    ctx.metrics.add("publish_errors", 1);
+                    tracing::warn!("publish {output}: {e}");
+                }
+            },
+            Err(e) => tracing::error!("encode surrogate: {e}"),
+        }
+        fit_ms.push(fit_ns as f64 / 1e6);
+        latency_ms.push(unix_ns().saturating_sub(msg.stamp_ns) as f64 / 1e6);
+        ctx.metrics.set("points", points.len() as f64);
+        ctx.metrics.set(
+            "queue_wait_ms",
+            arrival.received_ns.saturating_sub(msg.stamp_ns) as f64 / 1e6,
+        );
+        if let (Some(f), Some(l)) = (fit_ms.summary(), latency_ms.summary()) {
+            ctx.metrics.set("fit_p50_ms", f.p50);
+            ctx.metrics.set("latency_p50_ms", l.p50);
+            ctx.metrics.set("latency_p99_ms", l.p99);
+        }
+    }
+    mailbox.close();
+    Ok(())
+}

@@ -1,0 +1,50 @@
+//! A node's counters and gauges, shared between its worker threads and the
+//! status publisher.
+
+use shroud_core::message::NodeStatusMessage;
+use std::collections::BTreeMap;
+use std::sync::{Mutex, MutexGuard};
+
+#[derive(Debug, Default)]
+pub struct NodeMetrics {
+    counters: Mutex<BTreeMap<&'static str, u64>>,
+    gauges: Mutex<BTreeMap<&'static str, f64>>,
+}
+
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    // Counters stay meaningful even if a worker panicked mid-update.
+    m.lock().unwrap_or_else(|p| p.into_inner())
+}
+
+impl NodeMetrics {
+    pub fn add(&self, counter: &'static str, n: u64) {
+        *lock(&self.counters).entry(counter).or_insert(0) += n;
+    }
+
+    /// Sets a counter that another component keeps (e.g. a mailbox's drops).
+    pub fn set_counter(&self, counter: &'static str, value: u64) {
+        lock(&self.counters).insert(counter, value);
+    }
+
+    pub fn set(&self, gauge: &'static str, value: f64) {
+        if value.is_finite() {
+            lock(&self.gauges).insert(gauge, value);
+        }
+    }
+
+    pub fn counter(&self, counter: &str) -> u64 {
+        lock(&self.counters).get(counter).copied().unwrap_or(0)
+    }
+
+    /// Copies the current values into a status message.
+    pub fn fill(&self, msg: &mut NodeStatusMessage) {
+        msg.counters = lock(&self.counters)
+            .iter()
+            .map(|(k, v)| (k.to_string(), *v))
+            .collect();
+        msg.gauges = lock(&self.gauges)
+            .iter()
+            .map(|(k, v)| (k.to_string(), *v))
+            .collect();
+    }
+}

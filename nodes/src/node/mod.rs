@@ -1,0 +1,54 @@
+//! The node programs, each run as its own process with `shroud node <kind>`,
+//! and `shroud node list`.
+
+mod arm;
+mod arm_file;
+mod fit;
+mod guard;
+mod list;
+mod metrics;
+mod runtime;
+mod scanner;
+mod sensor;
+
+pub use arm::ArmArgs;
+pub use fit::FitNodeArgs;
+pub use guard::GuardArgs;
+pub use list::NodeListArgs;
+pub use metrics::NodeMetrics;
+pub use runtime::{run_node, NodeCommon, NodeContext};
+pub use scanner::ScannerArgs;
+pub use sensor::{CanNodeArgs, SerialNodeArgs};
+
+use anyhow::Result;
+use clap::Subcommand;
+
+#[derive(Debug, Subcommand)]
+pub enum NodeCommand {
+    /// Publish simulated clouds (moving spheres, terrain, table top, mesh scans).
+    Scanner(ScannerArgs),
+    /// Fit certified surrogates to a cloud stream.
+    Fit(FitNodeArgs),
+    /// Collision guard: per-link clearance of an arm against the surrogate sandwich.
+    Guard(GuardArgs),
+    /// A simulated arm following a trajectory, halting when the guard says stop.
+    Arm(ArmArgs),
+    /// A serial range sensor (PROTOCOLS.md section 1) published as clouds.
+    Serial(SerialNodeArgs),
+    /// A CAN range sensor (SocketCAN, SLCAN or a candump log) published as clouds.
+    Can(CanNodeArgs),
+    /// List the nodes alive in a namespace with their status.
+    List(NodeListArgs),
+}
+
+pub fn run(command: NodeCommand) -> Result<()> {
+    match command {
+        NodeCommand::Scanner(args) => scanner::run(args),
+        NodeCommand::Fit(args) => fit::run(args),
+        NodeCommand::Guard(args) => guard::run(args),
+        NodeCommand::Arm(args) => arm::run(args),
+        NodeCommand::Serial(args) => sensor::run_serial(args),
+        NodeCommand::Can(args) => sensor::run_can(args),
+        NodeCommand::List(args) => list::run(args),
+    }
+}

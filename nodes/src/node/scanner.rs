@@ -1,0 +1,133 @@
+//! The `scanner` node: the simulator as a sensor. Publishes one cloud per tick of
+//! a fixed-rate clock; a frame that cannot be produced in time is skipped and
+//! counted rather than delaying every later one.
+
+use super::runtime::{run_node, NodeCommon, NodeContext};
+use crate::transport::{unix_ns, PayloadWriter};
+use anyhow::{Context, Result};
+use clap::Args;
+use shroud_core::format::parse_triangle_mesh;
+use shroud_core::message::{CloudMessage, SensorPose, TopicKind};
+use shroud_sim::{RangeScanner, ScanResolution, Scene};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use zenoh::qos::CongestionControl;
+use zenoh::Wait;
+
+#[derive(Debug, Clone, Args)]
+pub struct ScannerArgs {
+    #[command(flatten)]
+    pub common: NodeCommon,
+    /// Scene to scan (see `shroud sim --help` for the list).
+    #[arg(long, default_value = "moving-spheres")]
+    pub scene: String,
+    /// Points per frame.
+    #[arg(long, default_value_t = 30_000)]
+    pub points: usize,
+    /// Frames per second.
+    #[arg(long, default_value_t = 10.0)]
+    pub rate: f64,
+    #[arg(long, default_value_t = 7)]
+    pub seed: u64,
+    /// Stream name: clouds go to `shroud/<ns>/cloud/<stream>`.
+    #[arg(long, default_value = "sim")]
+    pub stream: String,
+    /// Stop after this many frames (0: run until stopped).
+    #[arg(long, default_value_t = 0)]
+    pub frames: u64,
+    /// Scene seconds per wall second (0 freezes the scene).
+    #[arg(long, default_value_t = 1.0)]
+    pub time_scale: f64,
+    /// With `--scene scan-mesh`: the mesh to range-scan (.obj or .ply).
+    #[arg(long)]
+    pub mesh: Option<std::path::PathBuf>,
+}
+
+pub fn run(args: ScannerArgs) -> Result<()> {
+    anyhow::ensure!(
+        args.rate.is_finite() && args.rate > 0.0 && args.rate <= 1000.0,
+        "--rate must be in (0, 1000] frames per second"
+    );
+    anyhow::ensure!(args.time_scale.is_finite(), "--time-scale must be finite");
+    let scene = scene(&args)?;
+    let shm = args.common.zenoh.shm.is_on();
+    let common = args.common.clone();
+    run_node(&common, "scanner", move |ctx| serve(ctx, args, scene, shm))
+}
+
+/// The scene by name; `scan-mesh` orbits a range scanner around the user's mesh.
+fn scene(args: &ScannerArgs) -> Result<Scene> {
+    if args.scene != Scene::MESH_SCENE {
+        anyhow::ensure!(
+            args.mesh.is_none(),
+            "--mesh is only for --scene {}",
+            Scene::MESH_SCENE
+        );
+        let scene = Scene::by_name(&args.scene, args.points, args.seed)
+            .with_context(|| format!("scene {:?}", args.scene))?;
+        scene.prepare()?;
+        return Ok(scene);
+    }
+    let path = args
+        .mesh
+        .as_ref()
+        .context("--scene scan-mesh needs --mesh FILE")?;
+    let bytes =
+        std::fs::read(path).with_context(|| format!("cannot read mesh {}", path.display()))?;
+    let mesh = parse_triangle_mesh(&bytes).with_context(|| format!("mesh {}", path.display()))?;
+    let scanner = RangeScanner {
+        resolution: ScanResolution::Points(args.points),
+        seed: args.seed,
+        ..RangeScanner::orbiting(&mesh)?
+    };
+    let scene = Scene::scan_mesh(mesh, scanner)?;
+    scene.prepare()?;
+    Ok(scene)
+}
+
+fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene, shm: bool) -> Result<()> {
+    let key = ctx.key(TopicKind::Cloud, &args.stream)?;
+    // A sensor never waits for a slow subscriber: the next frame supersedes this one.
+    let publisher = ctx
+        .session
+        .declare_publisher(&key)
+        .congestion_control(CongestionControl::Drop)
+        .wait()
+        .map_err(|e| anyhow::anyhow!("publisher {key}: {e}"))?;
+    // Room for a few frames in flight: 12 bytes a point plus the header.
+    let writer = PayloadWriter::new(shm, 4 * (args.points * 12 + 4096));
+    tracing::info!(%key, scene = scene.name(), points = args.points, rate = args.rate, shm = writer.uses_shm(), "scanning");
+    let period = Duration::from_secs_f64(1.0 / args.rate);
+    let start = Instant::now();
+    let mut next = start;
+    let mut sequence = 0u64;
+    let source = format!("{}/{}", ctx.name, scene.name());
+    while !ctx.stopping() && (args.frames == 0 || sequence < args.frames) {
+        let now = Instant::now();
+        if now < next {
+            std::thread::sleep((next - now).min(Duration::from_millis(50)));
+            continue;
+        }
+        let behind = ((now - next).as_secs_f64() / period.as_secs_f64()) as u64;
+        if behind > 0 {
+            ctx.metrics.add("missed_ticks", behind);
+        }
+        next += period * (behind as u32 + 1);
+        let points = scene.generate(start.elapsed().as_secs_f64() * args.time_scale)?;
+        let msg = CloudMessage::new(unix_ns(), sequence, &source, SensorPose::default(), &points);
+        let payload = writer.payload(msg.to_bytes()?);
+        match publisher.put(payload).wait() {
+            Ok(()) => ctx.metrics.add("published", 1),
+            Err(e) => {
+                ctx.metrics.add("publish_errors", 1);
+                tracing::warn!("publish {key}: {e}");
+            }
+        }
+        let (shm_sent, copied) = writer.counts();
+        ctx.metrics.set_counter("sent_shm", shm_sent);
+        ctx.metrics.set_counter("sent_copy", copied);
+        ctx.metrics.set("points", points.len() as f64);
+        sequence += 1;
+    }
+    Ok(())
+}

@@ -1,0 +1,201 @@
+//! Shared helpers of the end-to-end graph tests: real `shroud` processes whose
+//! output is collected line by line, a zenoh session the test owns, and process
+//! liveness checks.
+#![allow(dead_code)]
+
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc::{channel, Receiver};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+use zenoh::Wait;
+
+/// A running `shroud` process; killed (with its process group) when dropped.
+pub struct Proc {
+    pub child: Child,
+    lines: Receiver<String>,
+    pub seen: Arc<Mutex<Vec<String>>>,
+}
+
+impl Proc {
+    pub fn start(args: &[&str]) -> Proc {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_shroud"))
+            .args(args)
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("the shroud binary starts");
+        let (tx, lines) = channel::<String>();
+        let seen = Arc::new(Mutex::new(Vec::new()));
+        for stream in [
+            child
+                .stdout
+                .take()
+                .map(|s| Box::new(s) as Box<dyn std::io::Read + Send>),
+            child
+                .stderr
+                .take()
+                .map(|s| Box::new(s) as Box<dyn std::io::Read + Send>),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            let (tx, seen) = (tx.clone(), seen.clone());
+            std::thread::spawn(move || {
+                for line in BufReader::new(stream).lines().map_while(Result::ok) {
+                    seen.lock().unwrap().push(line.clone());
+                    let _ = tx.send(line);
+                }
+            });
+        }
+        Proc { child, lines, seen }
+    }
+
+    pub fn pid(&self) -> i32 {
+        self.child.id() as i32
+    }
+
+    /// Waits for a line containing `needle`; panics with the output so far if none.
+    pub fn expect_line(&self, needle: &str, timeout: Duration) -> String {
+        let deadline = Instant::now() + timeout;
+        while let Some(left) = deadline.checked_duration_since(Instant::now()) {
+            match self.lines.recv_timeout(left) {
+                Ok(line) if line.contains(needle) => return line,
+                Ok(_) => {}
+                Err(_) => break,
+            }
+        }
+        panic!(
+            "no line containing {needle:?} within {timeout:?}; output:\n{}",
+            self.output()
+        );
+    }
+
+    /// After exit: waits (briefly) until the reader threads saw end of file, so
+    /// that `output` holds everything the process wrote.
+    fn drain_output(&self) {
+        let deadline = Instant::now() + Duration::from_secs(5);
+        while Instant::now() < deadline {
+            if let Err(std::sync::mpsc::RecvTimeoutError::Disconnected) =
+                self.lines.recv_timeout(Duration::from_millis(50))
+            {
+                return;
+            }
+        }
+    }
+
+    pub fn output(&self) -> String {
+        self.seen.lock().unwrap().join("\n")
+    }
+
+    pub fn signal(&self, sig: i32) {
+        unsafe {
+            libc::kill(self.pid(), sig);
+        }
+    }
+
+    /// Waits for exit; panics if it takes longer than `timeout`.
+    pub fn wait_exit(&mut self, timeout: Duration) -> std::process::ExitStatus {
+        let deadline = Instant::now() + timeout;
+        loop {
+            if let Some(status) = self.child.try_wait().expect("try_wait") {
+                self.drain_output();
+                return status;
+            }
+            assert!(
+                Instant::now() < deadline,
+                "process {} did not exit; output:\n{}",
+                self.pid(),
+                self.output()
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+}
+
+impl Drop for Proc {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// True while a process with this pid exists and is not a zombie.
+pub fn alive(pid: i32) -> bool {
+    match std::fs::read_to_string(format!("/proc/{pid}/stat")) {
+        Ok(stat) => !stat
+            .rsplit(')')
+            .next()
+            .is_some_and(|rest| rest.trim_start().starts_with('Z')),
+        Err(_) => false,
+    }
+}
+
+/// Waits until none of `pids` is alive.
+pub fn assert_all_gone(pids: &[i32], timeout: Duration) {
+    let deadline = Instant::now() + timeout;
+    while pids.iter().any(|&p| alive(p)) {
+        assert!(
+            Instant::now() < deadline,
+            "processes still alive: {:?}",
+            pids.iter().filter(|&&p| alive(p)).collect::<Vec<_>>()
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// A free TCP port on loopback (bound, then released for the test to use).
+pub fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .map(|a| a.port())
+        .expect("a free port")
+}
+
+/// A zenoh peer session for the test, listening on `endpoint`, without scouting.
+pub fn hub(endpoint: &str) -> zenoh::Session {
+    let mut config = zenoh::Config::default();
+    for (k, v) in [
+        ("mode", "\"peer\"".to_string()),
+        ("listen/endpoints", format!("[\"{endpoint}\"]")),
+        ("scouting/multicast/enabled", "false".to_string()),
+    ] {
+        config.insert_json5(k, &v).expect("valid zenoh setting");
+    }
+    zenoh::open(config).wait().expect("test session opens")
+}
+
+/// A zenoh peer session for the test that connects to `endpoint`.
+pub fn client_of(endpoint: &str) -> zenoh::Session {
+    let mut config = zenoh::Config::default();
+    for (k, v) in [
+        ("mode", "\"peer\"".to_string()),
+        ("connect/endpoints", format!("[\"{endpoint}\"]")),
+        ("listen/endpoints", "[\"tcp/127.0.0.1:0\"]".to_string()),
+        ("scouting/multicast/enabled", "false".to_string()),
+    ] {
+        config.insert_json5(k, &v).expect("valid zenoh setting");
+    }
+    zenoh::open(config).wait().expect("test session opens")
+}
+
+/// The args that put a node on the test's hub.
+pub fn wiring<'a>(endpoint: &'a str, namespace: &'a str) -> Vec<&'a str> {
+    vec![
+        "--connect",
+        endpoint,
+        "--multicast",
+        "off",
+        "--namespace",
+        namespace,
+    ]
+}
+
+/// Nanoseconds since the Unix epoch, as message stamps use.
+pub fn unix_ns() -> u64 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_nanos() as u64)
+        .unwrap_or(0)
+}

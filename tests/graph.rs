@@ -1,0 +1,140 @@
+//! End-to-end tests of the node graph: real `shroud` processes talking over real
+//! zenoh sessions on loopback.
+
+mod common;
+
+use common::{alive, assert_all_gone, free_port, hub, wiring, Proc};
+use shroud_core::message::{CloudMessage, NodeStatusMessage, SurrogateMessage};
+use shroud_core::query::{Classify, PointClass, SurrogateView};
+use std::collections::HashMap;
+use std::time::{Duration, Instant};
+use zenoh::Wait;
+
+const LONG: Duration = Duration::from_secs(60);
+
+/// Clouds from the scanner and surrogates from the fitter arrive; every point of
+/// every cloud is checked independently, in f64, against the surrogate that
+/// claims to certify it.
+#[test]
+fn fit_node_publishes_certified_surrogates_and_survives_garbage() {
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+    let session = hub(&endpoint);
+    let ns = "e2e-fit";
+    let clouds = session
+        .declare_subscriber(format!("shroud/{ns}/cloud/s"))
+        .wait()
+        .unwrap();
+    let surrogates = session
+        .declare_subscriber(format!("shroud/{ns}/surrogate/s"))
+        .wait()
+        .unwrap();
+    let statuses = session
+        .declare_subscriber(format!("shroud/{ns}/status/fit"))
+        .wait()
+        .unwrap();
+    let w = wiring(&endpoint, ns);
+    let mut fit =
+        Proc::start(&[&["node", "fit", "--input", "s", "--grid", "12x12"][..], &w].concat());
+    let mut scanner = Proc::start(
+        &[
+            &[
+                "node", "scanner", "--points", "3000", "--rate", "20", "--stream", "s",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+
+    // Certified surrogates arrive and really certify their clouds.
+    let mut by_sequence: HashMap<u64, Vec<[f32; 3]>> = HashMap::new();
+    let mut verified = 0;
+    let deadline = Instant::now() + LONG;
+    while verified < 3 {
+        assert!(
+            Instant::now() < deadline,
+            "no certified surrogates; fit:\n{}\nscanner:\n{}",
+            fit.output(),
+            scanner.output()
+        );
+        while let Ok(Some(sample)) = clouds.try_recv() {
+            let msg = CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+            by_sequence.insert(msg.sequence, msg.point_array().unwrap());
+        }
+        let Ok(Some(sample)) = surrogates.recv_timeout(Duration::from_millis(200)) else {
+            continue;
+        };
+        let (msg, surrogate) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+        assert_eq!(msg.surfaces.len(), 2, "a sandwich");
+        for s in &msg.surfaces {
+            assert_eq!(s.certificate.violations, 0);
+            assert_eq!(s.certificate.points_checked, 3000);
+        }
+        let Some(points) = by_sequence.get(&msg.source_sequence) else {
+            continue;
+        };
+        let view = SurrogateView::new(&surrogate).unwrap();
+        for p in points {
+            let class = view.classify(glam::DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64));
+            assert!(
+                matches!(class, PointClass::Between { .. }),
+                "point {p:?} of cloud {} is {class:?}",
+                msg.source_sequence
+            );
+        }
+        verified += 1;
+    }
+
+    // Garbage, truncated and foreign messages on the fitter's input are dropped,
+    // logged and counted; the fitter keeps working.
+    let cloud_key = format!("shroud/{ns}/cloud/s");
+    let valid = CloudMessage::new(1, 1, "x", Default::default(), &[[0.0, 0.0, 0.0]; 10])
+        .to_bytes()
+        .unwrap();
+    let mut wrong_version = CloudMessage::new(1, 1, "x", Default::default(), &[[0.0; 3]]);
+    wrong_version.version = 99;
+    let bad: Vec<Vec<u8>> = vec![
+        b"not msgpack at all".to_vec(),
+        valid[..valid.len() / 2].to_vec(),
+        wrong_version.to_bytes().unwrap(),
+        Vec::new(),
+    ];
+    for payload in &bad {
+        session.put(&cloud_key, payload.clone()).wait().unwrap();
+        std::thread::sleep(Duration::from_millis(30));
+    }
+    let deadline = Instant::now() + LONG;
+    loop {
+        assert!(
+            Instant::now() < deadline,
+            "malformed messages not counted; fit:\n{}",
+            fit.output()
+        );
+        if let Ok(Some(sample)) = statuses.recv_timeout(Duration::from_millis(500)) {
+            let status = NodeStatusMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+            if status.counter("dropped_malformed") >= bad.len() as u64 - 1 {
+                break;
+            }
+        }
+    }
+    assert!(
+        fit.output().contains("dropped a malformed message"),
+        "{}",
+        fit.output()
+    );
+    let before = surrogates.drain().count();
+    let _ = before;
+    surrogates
+        .recv_timeout(Duration::from_secs(20))
+        .unwrap()
+        .expect("fitter still publishing");
+
+    // SIGTERM stops both cleanly.
+    let pids = [fit.pid(), scanner.pid()];
+    fit.signal(libc::SIGTERM);
+    scanner.signal(libc::SIGTERM);
+    assert!(fit.wait_exit(LONG).success(), "{}", fit.output());
+    assert!(scanner.wait_exit(LONG).success(), "{}", scanner.output());
+    assert!(!fit.output().contains("panicked"));
+    assert_all_gone(&pids, Duration::from_secs(5));
+    assert!(!alive(pids[0]));
+}

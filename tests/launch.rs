@@ -1,0 +1,347 @@
+//! End-to-end tests of `shroud launch`: the supervisor starts real node processes,
+//! restarts failures with backoff, stops everything on a signal, and leaves no
+//! orphan even when it is killed outright.
+
+mod common;
+
+use common::{alive, assert_all_gone, client_of, Proc};
+use shroud_core::message::{CollisionMessage, SurrogateMessage};
+use std::time::{Duration, Instant};
+use zenoh::Wait;
+
+const LONG: Duration = Duration::from_secs(60);
+
+fn write_launch(dir: &std::path::Path, body: &str) -> String {
+    let path = dir.join("graph.toml");
+    std::fs::write(&path, body).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+/// The endpoint the launcher announces, and the pids of the nodes it started.
+fn endpoint_of(launcher: &Proc) -> String {
+    let line = launcher.expect_line("nodes connect to", LONG);
+    line.rsplit("nodes connect to ")
+        .next()
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .trim()
+        .to_string()
+}
+
+fn pids_of(launcher: &Proc, names: &[&str]) -> Vec<i32> {
+    let mut found = std::collections::HashMap::new();
+    while found.len() < names.len() {
+        let line = launcher.expect_line("[launch] started ", LONG);
+        let rest = line.rsplit("started ").next().unwrap();
+        let (name, pid) = rest.split_once(" (pid ").unwrap();
+        found.insert(
+            name.to_string(),
+            pid.trim_end_matches(')').parse::<i32>().unwrap(),
+        );
+    }
+    names.iter().map(|n| found[*n]).collect()
+}
+
+const GRAPH: &str = r#"
+namespace = "NS"
+shutdown_grace_s = 5
+[summary]
+period_s = 0.5
+[[node]]
+name = "scanner"
+run = "scanner"
+args = ["--points", "2000", "--rate", "10", "--stream", "s"]
+[[node]]
+name = "fit"
+run = "fit"
+args = ["--input", "s", "--grid", "10x10"]
+"#;
+
+#[test]
+fn sigint_stops_every_node_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_launch(dir.path(), &GRAPH.replace("NS", "e2e-sigint"));
+    let mut launcher = Proc::start(&["launch", &file]);
+    let endpoint = endpoint_of(&launcher);
+    let pids = pids_of(&launcher, &["scanner", "fit"]);
+    let session = client_of(&endpoint);
+    let surrogates = session
+        .declare_subscriber("shroud/e2e-sigint/surrogate/s")
+        .wait()
+        .unwrap();
+    let sample = surrogates
+        .recv_timeout(LONG)
+        .unwrap()
+        .expect("a surrogate through the launched graph");
+    let (msg, _) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+    assert!(msg.surfaces.iter().all(|s| s.certificate.violations == 0));
+    // Log lines are prefixed by node name, and the summary line is printed.
+    launcher.expect_line("certified 2000 pts, 0 violations", LONG);
+    assert!(
+        launcher.output().contains("[fit]") || launcher.output().contains("[scanner]"),
+        "{}",
+        launcher.output()
+    );
+    launcher.signal(libc::SIGINT);
+    let status = launcher.wait_exit(LONG);
+    assert!(status.success(), "{}", launcher.output());
+    assert!(launcher.output().contains("all nodes stopped cleanly"));
+    assert_all_gone(&pids, Duration::from_secs(5));
+}
+
+#[test]
+fn a_killed_launcher_leaves_no_orphan() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_launch(dir.path(), &GRAPH.replace("NS", "e2e-kill"));
+    let mut launcher = Proc::start(&["launch", &file]);
+    let pids = pids_of(&launcher, &["scanner", "fit"]);
+    assert!(pids.iter().all(|&p| alive(p)));
+    launcher.signal(libc::SIGKILL);
+    launcher.wait_exit(LONG);
+    assert_all_gone(&pids, Duration::from_secs(10));
+}
+
+#[test]
+fn a_failing_node_is_restarted_with_backoff_then_given_up() {
+    let dir = tempfile::tempdir().unwrap();
+    // `--grid 0x0` makes the fit node exit with an error at once.
+    let file = write_launch(
+        dir.path(),
+        r#"
+namespace = "e2e-restart"
+[summary]
+enabled = false
+[[node]]
+name = "broken"
+run = "fit"
+args = ["--grid", "0x0"]
+restart = "on-failure"
+max_restarts = 2
+backoff_ms = 100
+backoff_max_ms = 1000
+"#,
+    );
+    let mut launcher = Proc::start(&["launch", &file]);
+    let start = Instant::now();
+    launcher.expect_line("restarting broken in 0.10 s", LONG);
+    launcher.expect_line("restarting broken in 0.20 s", LONG);
+    launcher.expect_line("giving up on broken after 3 failures", LONG);
+    let status = launcher.wait_exit(LONG);
+    assert!(!status.success(), "a graph whose node gave up must fail");
+    assert!(
+        start.elapsed() >= Duration::from_millis(300),
+        "backoff delays were waited"
+    );
+    let out = launcher.output();
+    assert!(
+        out.contains("[broken] error:"),
+        "child errors are prefixed: {out}"
+    );
+    assert!(!out.contains("panicked"), "{out}");
+}
+
+#[test]
+fn bad_launch_files_are_named_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    for (body, needle) in [
+        (
+            "[[node]]\nname = \"a\"\nrun = \"fit\"\nargs = [\"--namespace\", \"x\"]",
+            "--namespace is set by the launcher",
+        ),
+        (
+            "namespace = \"a b\"\n[[node]]\nname = \"a\"\nrun = \"fit\"",
+            "namespace",
+        ),
+        ("[[node]]\nname = \"a\"", "run"),
+        ("", "no node"),
+    ] {
+        let file = write_launch(dir.path(), body);
+        let mut p = Proc::start(&["launch", &file]);
+        assert!(!p.wait_exit(LONG).success());
+        let out = p.output();
+        assert!(
+            out.contains(needle) && !out.contains("panicked"),
+            "{body:?}: {out}"
+        );
+    }
+    let mut missing = Proc::start(&["launch", "/nonexistent/graph.toml"]);
+    assert!(!missing.wait_exit(LONG).success());
+    assert!(missing.output().contains("cannot read launch file"));
+}
+
+fn collision(sample: &zenoh::sample::Sample) -> CollisionMessage {
+    CollisionMessage::from_bytes(&sample.payload().to_bytes()).unwrap()
+}
+
+/// A horizontal sheet of points at height `z` over [-1, 1]^2.
+fn sheet(z: f32, sequence: u64) -> Vec<u8> {
+    let points: Vec<[f32; 3]> = (0..40 * 40)
+        .map(|i| {
+            [
+                (i % 40) as f32 / 19.5 - 1.0,
+                (i / 40) as f32 / 19.5 - 1.0,
+                z + 0.01 * ((i * 7) % 5) as f32,
+            ]
+        })
+        .collect();
+    shroud_core::message::CloudMessage::new(
+        common::unix_ns(),
+        sequence,
+        "test",
+        Default::default(),
+        &points,
+    )
+    .to_bytes()
+    .unwrap()
+}
+
+/// Waits for a collision message satisfying `pred`, publishing `cloud` on the
+/// way so that the surrogate stays fresh.
+fn wait_collision(
+    session: &zenoh::Session,
+    sub: &zenoh::pubsub::Subscriber<zenoh::handlers::FifoChannelHandler<zenoh::sample::Sample>>,
+    cloud: impl Fn(u64) -> Vec<u8>,
+    pred: impl Fn(&CollisionMessage) -> bool,
+    launcher: &Proc,
+) -> CollisionMessage {
+    let deadline = Instant::now() + LONG;
+    let mut seq = 0;
+    let mut last = Instant::now() - Duration::from_secs(1);
+    loop {
+        assert!(
+            Instant::now() < deadline,
+            "no matching collision message; launcher:\n{}",
+            launcher.output()
+        );
+        if last.elapsed() > Duration::from_millis(100) {
+            session
+                .put("shroud/e2e-guard/cloud/inj", cloud(seq))
+                .wait()
+                .unwrap();
+            seq += 1;
+            last = Instant::now();
+        }
+        if let Ok(Some(sample)) = sub.recv_timeout(Duration::from_millis(20)) {
+            let msg = collision(&sample);
+            if pred(&msg) {
+                return msg;
+            }
+        }
+    }
+}
+
+/// The joint positions the arm publishes over `window`.
+fn joint_spread(
+    sub: &zenoh::pubsub::Subscriber<zenoh::handlers::FifoChannelHandler<zenoh::sample::Sample>>,
+    window: Duration,
+) -> f64 {
+    let _ = sub.drain().count();
+    let start = Instant::now();
+    let mut seen: Vec<Vec<f64>> = Vec::new();
+    while start.elapsed() < window {
+        if let Ok(Some(s)) = sub.recv_timeout(Duration::from_millis(50)) {
+            seen.push(
+                shroud_core::message::JointStateMessage::from_bytes(&s.payload().to_bytes())
+                    .unwrap()
+                    .positions,
+            );
+        }
+    }
+    assert!(seen.len() >= 3, "joint states keep coming");
+    seen.windows(2)
+        .map(|w| {
+            w[0].iter()
+                .zip(&w[1])
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The guard clears the arm over a distant cloud, and stops it when a cloud is
+/// injected across its path; the halted arm then stops moving.
+#[test]
+fn the_guard_stops_the_arm_on_an_injected_collision() {
+    let dir = tempfile::tempdir().unwrap();
+    let arm_file = concat!(env!("CARGO_MANIFEST_DIR"), "/launch/arms/demo_arm.toml");
+    let file = write_launch(
+        dir.path(),
+        &format!(
+            r#"
+namespace = "e2e-guard"
+[summary]
+period_s = 0.5
+[[node]]
+name = "fit"
+run = "fit"
+args = ["--input", "inj", "--grid", "8x8"]
+[[node]]
+name = "guard"
+run = "guard"
+args = ["--arm-file", "{arm_file}", "--surrogate", "inj", "--max-age", "5"]
+[[node]]
+name = "arm"
+run = "arm"
+args = ["--arm-file", "{arm_file}", "--rate", "20"]
+"#
+        ),
+    );
+    let mut launcher = Proc::start(&["launch", &file]);
+    let endpoint = endpoint_of(&launcher);
+    let pids = pids_of(&launcher, &["fit", "guard", "arm"]);
+    let session = client_of(&endpoint);
+    let verdicts = session
+        .declare_subscriber("shroud/e2e-guard/collision/demo_arm")
+        .wait()
+        .unwrap();
+    let joints = session
+        .declare_subscriber("shroud/e2e-guard/joints/demo_arm")
+        .wait()
+        .unwrap();
+
+    // Far below the arm: clear, and the arm moves.
+    let clear = wait_collision(
+        &session,
+        &verdicts,
+        |s| sheet(-2.0, s),
+        |m| !m.stop,
+        &launcher,
+    );
+    assert!(clear.min_clearance > clear.stop_distance);
+    let mut moved = 0.0;
+    for _ in 0..4 {
+        session
+            .put("shroud/e2e-guard/cloud/inj", sheet(-2.0, 1000))
+            .wait()
+            .unwrap();
+        moved = f64::max(moved, joint_spread(&joints, Duration::from_millis(400)));
+    }
+    assert!(moved > 1e-4, "the arm moves while clear");
+
+    // A sheet across the arm: stop, and the arm halts.
+    let stop = wait_collision(
+        &session,
+        &verdicts,
+        |s| sheet(1.2, 2000 + s),
+        |m| m.stop,
+        &launcher,
+    );
+    assert_eq!(stop.min_clearance, 0.0, "{stop:?}");
+    assert!(stop.links.iter().any(|l| l.clearance == 0.0));
+    std::thread::sleep(Duration::from_millis(300));
+    session
+        .put("shroud/e2e-guard/cloud/inj", sheet(1.2, 5000))
+        .wait()
+        .unwrap();
+    assert_eq!(
+        joint_spread(&joints, Duration::from_millis(600)),
+        0.0,
+        "the halted arm holds still"
+    );
+
+    launcher.signal(libc::SIGTERM);
+    assert!(launcher.wait_exit(LONG).success(), "{}", launcher.output());
+    assert_all_gone(&pids, Duration::from_secs(5));
+}

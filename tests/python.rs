@@ -1,0 +1,144 @@
+//! The Python example of `core/FORMATS.md`, run as documented against real nodes:
+//! proves that a consumer in another language decodes what the nodes send with
+//! the documented layout. The test installs its own Python environment (pinned
+//! eclipse-zenoh, msgpack, numpy from PyPI) under the target directory.
+
+mod common;
+
+use common::{free_port, hub, wiring, Proc};
+use shroud_core::message::CloudMessage;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::{Duration, Instant};
+use zenoh::Wait;
+
+const PACKAGES: [&str; 3] = ["eclipse-zenoh==1.10.2", "msgpack==1.1.2", "numpy==2.2.6"];
+
+/// A virtual environment with the example's packages, created once.
+fn python() -> PathBuf {
+    let venv = Path::new(env!("CARGO_TARGET_TMPDIR")).join("pyenv");
+    let py = venv.join("bin/python3");
+    let ready = venv.join(".ready");
+    if !ready.exists() {
+        let status = Command::new("python3")
+            .args(["-m", "venv"])
+            .arg(&venv)
+            .status()
+            .expect("python3 runs");
+        assert!(status.success(), "python3 -m venv failed");
+        let out = Command::new(&py)
+            .args([
+                "-m",
+                "pip",
+                "install",
+                "--quiet",
+                "--disable-pip-version-check",
+            ])
+            .args(PACKAGES)
+            .output()
+            .expect("pip runs");
+        assert!(
+            out.status.success(),
+            "pip install {PACKAGES:?} failed (needs the PyPI registry): {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        std::fs::write(&ready, "").unwrap();
+    }
+    py
+}
+
+/// The code block between the python-example markers of FORMATS.md.
+fn documented_example() -> String {
+    let doc =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/core/FORMATS.md")).unwrap();
+    let start = doc
+        .find("<!-- python-example:start -->")
+        .expect("start marker");
+    let end = doc.find("<!-- python-example:end -->").expect("end marker");
+    let block = &doc[start..end];
+    let code_start = block.find("```python\n").expect("python fence") + "```python\n".len();
+    let code_end = block[code_start..].find("```").expect("closing fence") + code_start;
+    block[code_start..code_end].to_string()
+}
+
+#[test]
+fn python_decodes_what_the_nodes_send() {
+    let py = python();
+    let dir = tempfile::tempdir().unwrap();
+    let script = dir.path().join("listen.py");
+    std::fs::write(&script, documented_example()).unwrap();
+
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+    let session = hub(&endpoint);
+    let ns = "e2e-python";
+    let clouds = session
+        .declare_subscriber(format!("shroud/{ns}/cloud/py"))
+        .wait()
+        .unwrap();
+    let w = wiring(&endpoint, ns);
+    let _fit = Proc::start(&[&["node", "fit", "--input", "py", "--grid", "10x8"][..], &w].concat());
+    let _scanner = Proc::start(
+        &[
+            &[
+                "node", "scanner", "--points", "2000", "--rate", "5", "--stream", "py",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+
+    let child = Command::new(&py)
+        .arg(&script)
+        .args([endpoint.as_str(), ns])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Collect our own decoding of the same clouds while Python listens.
+    let mut sums: HashMap<u64, (usize, f64)> = HashMap::new();
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let pid = child.id() as i32;
+    while common::alive(pid) && Instant::now() < deadline {
+        if let Ok(Some(sample)) = clouds.recv_timeout(Duration::from_millis(100)) {
+            let msg = CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+            let pts = msg.point_array().unwrap();
+            let sum = pts.iter().flatten().map(|&x| x as f64).sum();
+            sums.insert(msg.sequence, (pts.len(), sum));
+        }
+    }
+    let out = child.wait_with_output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "python failed: {stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines: Vec<serde_json::Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(
+        lines.len(),
+        3,
+        "one cloud line and two surface lines: {stdout}"
+    );
+    let seq = lines[0]["cloud"].as_u64().unwrap();
+    let (n, sum) = sums[&seq];
+    assert_eq!(lines[0]["points"].as_u64().unwrap() as usize, n);
+    let py_sum = lines[0]["sum"].as_f64().unwrap();
+    assert!(
+        (py_sum - sum).abs() <= 1e-9 * sum.abs().max(1.0),
+        "python {py_sum} vs rust {sum}"
+    );
+    let sides: Vec<&str> = lines[1..]
+        .iter()
+        .map(|l| l["side"].as_str().unwrap())
+        .collect();
+    assert_eq!(sides, ["upper", "lower"]);
+    for l in &lines[1..] {
+        assert_eq!(l["grid"], serde_json::json!([8, 10]), "rows x cols");
+        assert_eq!(l["checked"], 2000);
+        assert_eq!(l["violations"], 0);
+    }
+}
