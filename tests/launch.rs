@@ -345,3 +345,74 @@ args = ["--arm-file", "{arm_file}", "--rate", "20"]
     assert!(launcher.wait_exit(LONG).success(), "{}", launcher.output());
     assert_all_gone(&pids, Duration::from_secs(5));
 }
+
+/// `shroud node list`, `topic list`, `topic echo` and `topic hz` against a
+/// launched graph.
+#[test]
+fn introspection_tools_see_the_running_graph() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_launch(dir.path(), &GRAPH.replace("NS", "e2e-tools"));
+    let mut launcher = Proc::start(&["launch", &file]);
+    let endpoint = endpoint_of(&launcher);
+    let pids = pids_of(&launcher, &["scanner", "fit"]);
+    launcher.expect_line("certified 2000 pts", LONG);
+    let wiring = [
+        "--namespace",
+        "e2e-tools",
+        "--connect",
+        endpoint.as_str(),
+        "--multicast",
+        "off",
+    ];
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_shroud"))
+            .args(args)
+            .args(wiring)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let nodes = run(&["node", "list"]);
+    assert!(
+        nodes.contains("scanner") && nodes.contains("fit") && nodes.contains("published="),
+        "{nodes}"
+    );
+    let topics = run(&["topic", "list", "--duration", "1.5"]);
+    assert!(
+        topics.contains("shroud/e2e-tools/cloud/s") && topics.contains("surrogate"),
+        "{topics}"
+    );
+    let echo = run(&[
+        "topic",
+        "echo",
+        "surrogate/s",
+        "--count",
+        "1",
+        "--timeout",
+        "30",
+    ]);
+    let line: serde_json::Value = serde_json::from_str(echo.lines().next().unwrap()).unwrap();
+    assert_eq!(
+        line["message"]["surfaces"][0]["certificate"]["violations"], 0,
+        "{echo}"
+    );
+    let hz = run(&["topic", "hz", "cloud/s", "--duration", "2"]);
+    assert!(hz.contains("messages in"), "{hz}");
+    let silent = std::process::Command::new(env!("CARGO_BIN_EXE_shroud"))
+        .args(["topic", "echo", "cloud/nothing", "--timeout", "1"])
+        .args(wiring)
+        .output()
+        .unwrap();
+    assert!(
+        !silent.status.success(),
+        "echo with nothing to hear fails after its timeout"
+    );
+    launcher.signal(libc::SIGTERM);
+    assert!(launcher.wait_exit(LONG).success());
+    assert_all_gone(&pids, Duration::from_secs(5));
+}
