@@ -56,13 +56,15 @@ fn fit_node_publishes_certified_surrogates_and_survives_garbage() {
             fit.output(),
             scanner.output()
         );
+        let Ok(Some(sample)) = surrogates.recv_timeout(Duration::from_millis(200)) else {
+            continue;
+        };
+        // The cloud a surrogate certifies was published before it: drain the
+        // clouds after the surrogate arrived, not before.
         while let Ok(Some(sample)) = clouds.try_recv() {
             let msg = CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
             by_sequence.insert(msg.sequence, msg.point_array().unwrap());
         }
-        let Ok(Some(sample)) = surrogates.recv_timeout(Duration::from_millis(200)) else {
-            continue;
-        };
         let (msg, surrogate) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
         assert_eq!(msg.surfaces.len(), 2, "a sandwich");
         for s in &msg.surfaces {
