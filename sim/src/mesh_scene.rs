@@ -169,14 +169,7 @@ fn box_mesh(b: &TableBox, base: f64) -> TriangleMesh {
         [2, 3, 7, 6], // back (+y)
         [3, 0, 4, 7], // left (-x)
     ];
-    let triangles = quads
-        .iter()
-        .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
-        .collect();
-    TriangleMesh {
-        vertices,
-        triangles,
-    }
+    TriangleMesh::from_quads(vertices, &quads)
 }
 
 /// A closed prism of `segments` sides approximating the cylinder (vertices on the

@@ -101,13 +101,7 @@ fn validate(params: &BlendParams) -> Result<(), BlendError> {
         ("cell", params.cell),
         ("s1_threshold", params.s1_threshold),
     ] {
-        if !(value > 0.0 && value < 1e6) {
-            return Err(BlendError::InvalidParameter {
-                name,
-                value,
-                reason: "must be positive and finite",
-            });
-        }
+        super::regions::check_positive(name, value)?;
     }
     Ok(())
 }

@@ -52,13 +52,7 @@ impl RegionParams {
             ("regions.depth_tolerance", self.depth_tolerance),
             ("regions.reach", self.reach),
         ] {
-            if !(value > 0.0 && value < 1e6) {
-                return Err(BlendError::InvalidParameter {
-                    name,
-                    value,
-                    reason: "must be positive and finite",
-                });
-            }
+            check_positive(name, value)?;
         }
         Ok(())
     }
@@ -224,4 +218,17 @@ pub fn blend_regions(
         .map(|(i, _)| i)
         .collect();
     Ok(regions)
+}
+
+/// A size parameter must be positive and finite (below 1e6, far beyond any scene).
+pub(crate) fn check_positive(name: &'static str, value: f64) -> Result<(), BlendError> {
+    if value > 0.0 && value < 1e6 {
+        Ok(())
+    } else {
+        Err(BlendError::InvalidParameter {
+            name,
+            value,
+            reason: "must be positive and finite",
+        })
+    }
 }

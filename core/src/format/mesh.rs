@@ -9,6 +9,19 @@ pub struct TriangleMesh {
 }
 
 impl TriangleMesh {
+    /// A mesh from quads (each split along its `a`-`c` diagonal into two triangles
+    /// with the quad's orientation).
+    pub fn from_quads(vertices: Vec<[f64; 3]>, quads: &[[u32; 4]]) -> Self {
+        let triangles = quads
+            .iter()
+            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+            .collect();
+        Self {
+            vertices,
+            triangles,
+        }
+    }
+
     /// Appends `other`, re-indexing its triangles past this mesh's vertices.
     pub fn merge(&mut self, other: &TriangleMesh) {
         // Meshes stay far below 2^32 vertices (tessellation is bounded by the grid).

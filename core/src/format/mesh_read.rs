@@ -255,14 +255,7 @@ mod tests {
             [0, 4, 6, 2],
             [1, 3, 7, 5],
         ];
-        let triangles = quads
-            .iter()
-            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
-            .collect();
-        TriangleMesh {
-            vertices,
-            triangles,
-        }
+        TriangleMesh::from_quads(vertices, &quads)
     }
 
     fn f32_vertices(mesh: &TriangleMesh) -> TriangleMesh {
