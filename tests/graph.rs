@@ -99,6 +99,9 @@ fn fit_node_publishes_certified_surrogates_and_survives_garbage() {
         valid[..valid.len() / 2].to_vec(),
         wrong_version.to_bytes().unwrap(),
         Vec::new(),
+        CloudMessage::new(1, 2, "x", Default::default(), &[[0.0, f32::NAN, 1.0]; 64])
+            .to_bytes()
+            .unwrap(),
     ];
     for payload in &bad {
         session.put(&cloud_key, payload.clone()).wait().unwrap();

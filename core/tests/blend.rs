@@ -117,7 +117,13 @@ fn marching_tetrahedra_points_lie_on_the_zero_set() {
 fn drop_transform_maps_the_initial_pair_onto_the_target() {
     let mut rng = Jitter::new(5);
     for _ in 0..50 {
-        let mut v = || DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 4.0;
+        let mut v = || {
+            DVec3::new(
+                rng.uniform() - 0.5,
+                rng.uniform() - 0.5,
+                rng.uniform() - 0.5,
+            ) * 4.0
+        };
         let (p_i, v_i, p_t, v_t) = (v(), v().normalize(), v(), v().normalize());
         let t = drop_transform(p_i, v_i, p_t, v_t);
         assert!((t.apply(p_i) - p_t).length() < 1e-12);
@@ -497,4 +503,69 @@ fn given_polyline_and_sim_cap_on_terrain() {
     let _ = RigidTransform::IDENTITY;
     let _ = DQuat::IDENTITY;
     let _ = to_dvec3([0.0; 3]);
+}
+
+/// The interactive session: drop, adjust, clear, commit; a refused command
+/// leaves the last good model.
+#[test]
+fn session_follows_drops_adjustments_and_commits() {
+    use shroud_core::blend::{BlendCommand, BlendSession, ModelSources};
+    let (parent, child) = plane_and_hemisphere();
+    let parent_len = parent.points().len();
+    let mut session = BlendSession::new(parent, child, small_params());
+    let count = |s: &BlendSession, source: Source| {
+        let (points, sources) = s.model();
+        (0..points.len())
+            .filter(|&i| sources.get(i) == source)
+            .count()
+    };
+    assert!(matches!(session.model().1, ModelSources::AllParent));
+    let drop = BlendCommand::Drop {
+        at: DVec3::new(0.2, -0.1, 0.0),
+        normal: None,
+    };
+    let report = session.apply(&drop).unwrap().expect("a blend");
+    assert!(report.kept_transition > 0);
+    assert!(count(&session, Source::Child) > 100 && count(&session, Source::Transition) > 0);
+    let placed = session.drop_state().unwrap();
+
+    // Lifting the child moves it along the normal, and is remembered by the next drop.
+    let lift = LocalAdjust {
+        lift: 0.02,
+        ..Default::default()
+    };
+    session.apply(&BlendCommand::Adjust(lift)).unwrap();
+    assert_eq!(session.drop_state().unwrap().adjust, lift);
+    assert_eq!(session.drop_state().unwrap().p_t, placed.p_t);
+    let moved = BlendCommand::Drop {
+        at: DVec3::new(-0.3, 0.2, 0.0),
+        normal: Some(DVec3::Z),
+    };
+    session.apply(&moved).unwrap();
+    assert_eq!(session.drop_state().unwrap().adjust, lift);
+
+    // A refused drop keeps the model.
+    let before = session.model().0.len();
+    let bad = BlendCommand::Drop {
+        at: DVec3::new(f64::NAN, 0.0, 0.0),
+        normal: None,
+    };
+    assert!(session.apply(&bad).is_err());
+    assert_eq!(session.model().0.len(), before);
+
+    // Clear: the parent alone; commit without a drop is refused.
+    session.apply(&BlendCommand::Clear).unwrap();
+    assert_eq!(session.model().0.len(), parent_len);
+    assert!(matches!(
+        session.apply(&BlendCommand::Commit),
+        Err(BlendError::NothingDropped)
+    ));
+
+    // Commit: the blend becomes the parent of the next drop.
+    session.apply(&drop).unwrap();
+    let blended = session.model().0.len();
+    session.apply(&BlendCommand::Commit).unwrap();
+    assert_eq!(session.commits(), 1);
+    assert_eq!(session.model().0.len(), blended);
+    assert!(session.drop_state().is_none());
 }

@@ -44,6 +44,9 @@ pub enum SceneError {
     /// `Scene::by_name` got a name it does not know.
     #[error("unknown scene `{name}`; expected one of: moving-spheres, terrain, table-top, scan-table-top, scan-terrain (scan-mesh is built from a mesh with Scene::scan_mesh)")]
     UnknownScene { name: String },
+    /// `part_by_name` got a name it does not know.
+    #[error("unknown part `{name}`; expected hemisphere or half-cylinder")]
+    UnknownPart { name: String },
     /// A parameter lies outside an open or half-open interval (a field of view in
     /// (0, π), a dropout probability in [0, 1)).
     #[error("scene parameter `{parameter}` must lie in {interval}, got {value}")]

@@ -12,6 +12,7 @@
 mod error;
 mod mesh_scene;
 mod moving_spheres;
+pub mod parts;
 mod path;
 mod sampling;
 mod scanner;

@@ -45,4 +45,6 @@ pub enum BlendError {
     DegenerateCamera { reason: &'static str },
     #[error("too few surface samples around the target to fit its normal")]
     NoTargetNormal,
+    #[error("no child is dropped yet: drop it before adjusting or committing")]
+    NothingDropped,
 }

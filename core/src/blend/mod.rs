@@ -6,7 +6,8 @@
 //! * Blending regions (Section 4): [`PolygonOfInterest`], [`blend_regions`].
 //! * Transition surface (Section 5): [`rbf`] (triharmonic RBF, greedy centres,
 //!   dense solve) and [`sample_zero_set`] (marching tetrahedra, surface following).
-//! * Merge and compound blending: [`merge`], [`blend`], [`blend_sequence`].
+//! * Merge and compound blending: [`merge`], [`blend`], [`blend_sequence`];
+//!   interactively, [`BlendSession`] (drop, adjust, clear, commit).
 //! * Measures: [`seam_gap`], [`overlap_rate`]; output: [`write_ply_with_normals`].
 // `!(x > 0.0)` deliberately rejects NaN as well, which `x <= 0.0` would let through.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -25,6 +26,7 @@ mod prepared;
 mod quality;
 pub mod rbf;
 mod regions;
+mod session;
 mod tetra;
 mod transform;
 mod write_ply;
@@ -40,6 +42,7 @@ pub use polygon2d::{segment_distance, signed_area, Polygon2};
 pub use prepared::{Child, Prepared, MIN_CLOUD_POINTS};
 pub use quality::{overlap_rate, seam_gap, seam_points, Gap};
 pub use regions::{blend_regions, BlendRegions, ParentClass, RegionParams};
+pub use session::{supersede, BlendCommand, BlendSession, DropState, ModelSources};
 pub use tetra::{sample_zero_set, SampledSurface};
 pub use transform::{drop_transform, LocalAdjust, RigidTransform};
 pub use write_ply::write_ply_with_normals;

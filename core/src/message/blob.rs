@@ -49,6 +49,45 @@ pub fn encode<T: serde::Serialize>(value: &T) -> Result<Vec<u8>, MessageError> {
     rmp_serde::to_vec_named(value).map_err(|e| MessageError::Malformed(e.to_string()))
 }
 
+/// The length of `value`'s encoding, without writing it (to size a buffer that
+/// the message is then encoded into, such as a shared-memory segment).
+pub fn encoded_len<T: serde::Serialize>(value: &T) -> Result<usize, MessageError> {
+    let mut counter = ByteCounter(0);
+    rmp_serde::encode::write_named(&mut counter, value)
+        .map_err(|e| MessageError::Malformed(e.to_string()))?;
+    Ok(counter.0)
+}
+
+/// Encodes `value` into `out`, which must be exactly [`encoded_len`] long.
+pub fn encode_into<T: serde::Serialize>(value: &T, out: &mut [u8]) -> Result<(), MessageError> {
+    let len = out.len();
+    let mut rest = &mut out[..];
+    rmp_serde::encode::write_named(&mut rest, value)
+        .map_err(|e| MessageError::Malformed(e.to_string()))?;
+    if rest.is_empty() {
+        Ok(())
+    } else {
+        Err(MessageError::Malformed(format!(
+            "encoding is {} bytes, the buffer {len}",
+            len - rest.len()
+        )))
+    }
+}
+
+/// A writer that only counts.
+struct ByteCounter(usize);
+
+impl std::io::Write for ByteCounter {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0 += buf.len();
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
 pub fn decode<'a, T: serde::Deserialize<'a>>(bytes: &'a [u8]) -> Result<T, MessageError> {
     rmp_serde::from_slice(bytes).map_err(|e| MessageError::Malformed(e.to_string()))
 }

@@ -1,9 +1,9 @@
 //! Point-cloud messages: stamp, sequence, source, sensor pose, and the points as
 //! raw little-endian f32 xyz (12 bytes a point) with optional f32 intensity.
 
-use super::blob::{bytes_to_f32s, decode, encode, f32s_to_bytes};
+use super::blob::{bytes_to_f32s, encode, f32s_to_bytes};
 use super::error::MessageError;
-use super::{check_version, SCHEMA_VERSION};
+use super::SCHEMA_VERSION;
 use serde::{Deserialize, Serialize};
 
 /// Sensor pose in the world: position and unit quaternion `[x, y, z, w]`.
@@ -32,12 +32,13 @@ pub struct CloudMessage {
     /// Which sensor or scene produced it.
     pub source: String,
     pub pose: SensorPose,
-    /// `points * 12` bytes: x, y, z as little-endian f32, point after point.
-    #[serde(with = "serde_bytes")]
-    pub points: Vec<u8>,
     /// `points * 4` bytes of little-endian f32 intensity, or absent.
     #[serde(with = "serde_bytes", default, skip_serializing_if = "Option::is_none")]
     pub intensity: Option<Vec<u8>>,
+    /// `points * 12` bytes: x, y, z as little-endian f32, point after point.
+    /// Last in the map (see [`CloudView::aligned`](super::CloudView::aligned)).
+    #[serde(with = "serde_bytes")]
+    pub points: Vec<u8>,
 }
 
 impl CloudMessage {
@@ -70,18 +71,7 @@ impl CloudMessage {
 
     /// Decodes and validates: version, blob lengths, finite values, pose.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, MessageError> {
-        let msg: CloudMessage = decode(bytes)?;
-        check_version(msg.version)?;
-        msg.point_array()?;
-        msg.intensity_array()?;
-        let pose = msg.pose.position.iter().chain(&msg.pose.orientation);
-        if let Some(index) = pose.clone().position(|v| !v.is_finite()) {
-            return Err(MessageError::NonFinite {
-                field: "pose",
-                index,
-            });
-        }
-        Ok(msg)
+        super::CloudView::from_bytes(bytes)?.to_message()
     }
 
     /// The points as xyz triples.

@@ -2,8 +2,8 @@
 //! echo`: every field except bulk blobs, which are summarised (count, bounds).
 
 use super::{
-    CloudMessage, CollisionMessage, JointStateMessage, MessageError, NodeStatusMessage,
-    SurrogateMessage, TopicKind,
+    BlendCommandMessage, CloudMessage, CollisionMessage, JointStateMessage, MessageError,
+    NodeStatusMessage, SurrogateMessage, TopicKind,
 };
 use serde_json::{json, Value};
 
@@ -16,6 +16,7 @@ pub fn describe(kind: TopicKind, bytes: &[u8]) -> Result<Value, MessageError> {
         TopicKind::Collision => to_value(&CollisionMessage::from_bytes(bytes)?)?,
         TopicKind::Status => to_value(&NodeStatusMessage::from_bytes(bytes)?)?,
         TopicKind::Alive => json!({ "alive": true }),
+        TopicKind::Blend => to_value(&BlendCommandMessage::from_bytes(bytes)?)?,
     };
     Ok(value)
 }

@@ -3,8 +3,10 @@
 //! message with a MessagePack library and a byte-to-array view (numpy's
 //! `frombuffer`). Pure encode/decode with validation; transport lives in `nodes/`.
 
+mod blend_command;
 mod blob;
 mod cloud;
+mod cloud_view;
 mod collision;
 mod describe;
 mod error;
@@ -13,7 +15,10 @@ mod status;
 mod surrogate;
 mod topic;
 
+pub use blend_command::BlendCommandMessage;
+pub use blob::{encode_into, encoded_len};
 pub use cloud::{CloudMessage, SensorPose};
+pub use cloud_view::CloudView;
 pub use collision::{CollisionMessage, GuardVerdict, LinkClearance};
 pub use describe::describe;
 pub use error::MessageError;

@@ -9,6 +9,7 @@
 //! | joint states | `shroud/<ns>/joints/<arm>` | [`super::JointStateMessage`] |
 //! | collision status | `shroud/<ns>/collision/<arm>` | [`super::CollisionMessage`] |
 //! | node status | `shroud/<ns>/status/<node>` | [`super::NodeStatusMessage`] |
+//! | blend commands | `shroud/<ns>/blend/<blender>` | [`super::BlendCommandMessage`] |
 //! | node presence | `shroud/<ns>/alive/<node>` | liveliness token |
 
 use super::error::MessageError;
@@ -26,16 +27,18 @@ pub enum TopicKind {
     Collision,
     Status,
     Alive,
+    Blend,
 }
 
 impl TopicKind {
-    pub const ALL: [TopicKind; 6] = [
+    pub const ALL: [TopicKind; 7] = [
         Self::Cloud,
         Self::Surrogate,
         Self::Joints,
         Self::Collision,
         Self::Status,
         Self::Alive,
+        Self::Blend,
     ];
 
     pub fn as_str(self) -> &'static str {
@@ -46,6 +49,7 @@ impl TopicKind {
             Self::Collision => "collision",
             Self::Status => "status",
             Self::Alive => "alive",
+            Self::Blend => "blend",
         }
     }
 

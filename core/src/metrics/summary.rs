@@ -59,6 +59,9 @@ impl GraphSummary {
             if let (Some(p50), Some(p99)) = (s.gauge("latency_p50_ms"), s.gauge("latency_p99_ms")) {
                 part += &format!(", latency p50 {p50:.2} p99 {p99:.2} ms");
             }
+            if let Some(ms) = s.gauge("blend_ms") {
+                part += &format!(", last blend {ms:.0} ms");
+            }
             let drops = s.counter("dropped_backlog") + s.counter("dropped_malformed");
             if drops > 0 {
                 part += &format!(", {drops} dropped");

@@ -5,7 +5,7 @@
 use super::BenchArgs;
 use crate::transport::{unix_ns, OnOff, PayloadWriter, ZenohArgs};
 use anyhow::{Context, Result};
-use shroud_core::message::{CloudMessage, SurrogateMessage};
+use shroud_core::message::{CloudView, SurrogateMessage};
 use shroud_core::metrics::Percentiles;
 use shroud_sim::MovingSpheres;
 use std::process::{Child, Command, Stdio};
@@ -112,9 +112,10 @@ async fn measure(points: usize, rate: f64, seconds: f64) -> Result<Row> {
     let mut published = 0u64;
     while start.elapsed().as_secs_f64() < seconds {
         let frame = &frames[published as usize % frames.len()];
-        let msg = CloudMessage::new(unix_ns(), published, "bench", Default::default(), frame);
+        let msg =
+            CloudView::new(unix_ns(), published, "bench", Default::default(), frame).aligned()?;
         publisher
-            .put(writer.payload(msg.to_bytes()?))
+            .put(writer.encode(&msg)?)
             .await
             .map_err(|e| anyhow::anyhow!("put: {e}"))?;
         published += 1;
@@ -164,9 +165,10 @@ async fn wait_until_fitting(
             start.elapsed() < Duration::from_secs(30),
             "the fit node never answered"
         );
-        let msg = CloudMessage::new(unix_ns(), u64::MAX, "warmup", Default::default(), frame);
+        let msg =
+            CloudView::new(unix_ns(), u64::MAX, "warmup", Default::default(), frame).aligned()?;
         publisher
-            .put(writer.payload(msg.to_bytes()?))
+            .put(writer.encode(&msg)?)
             .await
             .map_err(|e| anyhow::anyhow!("put: {e}"))?;
         tokio::time::sleep(Duration::from_millis(100)).await;

@@ -12,6 +12,33 @@ use shroud_core::blend::{
 use std::path::PathBuf;
 use std::time::Instant;
 
+/// The blend's tunables, shared by `shroud blend` and the `blend` node.
+#[derive(clap::Args, Debug, Clone)]
+pub struct BlendShapeArgs {
+    /// RBF centre budget.
+    #[arg(long, default_value_t = 1200)]
+    pub centres: usize,
+    /// Marching-tetrahedra cell, in point spacings.
+    #[arg(long, default_value_t = 1.5)]
+    pub cell: f64,
+    /// Gap, ring and front sizes as fractions of the polygon's radius: g,r,f.
+    #[arg(long, default_value = "0.35,0.3,0.3")]
+    pub regions: String,
+}
+
+impl BlendShapeArgs {
+    pub fn params(&self) -> Result<BlendParams> {
+        let [gap, ring, front] = parse::numbers::<3>(&self.regions, "regions")?;
+        let mut params = BlendParams::default();
+        params.regions.gap = gap;
+        params.regions.ring = ring;
+        params.regions.front = front;
+        params.rbf.max_centres = self.centres;
+        params.cell = self.cell;
+        Ok(params)
+    }
+}
+
 #[derive(clap::Args, Debug)]
 pub struct BlendArgs {
     /// The parent cloud M_p (.ply, .xyz, .csv).
@@ -55,15 +82,8 @@ pub struct BlendArgs {
     /// (default: the child's longest open boundary loop).
     #[arg(long, allow_hyphen_values = true)]
     pub polygon: Option<String>,
-    /// RBF centre budget.
-    #[arg(long, default_value_t = 1200)]
-    pub centres: usize,
-    /// Marching-tetrahedra cell, in point spacings.
-    #[arg(long, default_value_t = 1.5)]
-    pub cell: f64,
-    /// Gap, ring and front sizes as fractions of the polygon's radius: g,r,f.
-    #[arg(long, default_value = "0.35,0.3,0.3")]
-    pub regions: String,
+    #[command(flatten)]
+    pub shape: BlendShapeArgs,
     /// Where to write the blended cloud (binary PLY with normals and a source
     /// property: 0 parent, 1 child, 2 transition).
     #[arg(short, long)]
@@ -81,7 +101,7 @@ pub fn run(args: &BlendArgs) -> Result<()> {
             args.output.display()
         );
     }
-    let params = params(args)?;
+    let params = args.shape.params()?;
     let start = Instant::now();
     let parent_points = files::read_cloud(&args.parent)?;
     let child_points = files::read_cloud(&args.child)?;
@@ -145,17 +165,6 @@ pub fn run(args: &BlendArgs) -> Result<()> {
     Ok(())
 }
 
-fn params(args: &BlendArgs) -> Result<BlendParams> {
-    let [gap, ring, front] = parse::numbers::<3>(&args.regions, "regions")?;
-    let mut params = BlendParams::default();
-    params.regions.gap = gap;
-    params.regions.ring = ring;
-    params.regions.front = front;
-    params.rbf.max_centres = args.centres;
-    params.cell = args.cell;
-    Ok(params)
-}
-
 fn drag(args: &BlendArgs, parent: &Prepared, child: &Child) -> Result<DragSession> {
     let values: Vec<f64> = args
         .camera
@@ -215,7 +224,7 @@ fn drag(args: &BlendArgs, parent: &Prepared, child: &Child) -> Result<DragSessio
 }
 
 /// `"x,y,z;x,y,z;..."`.
-fn points3(text: &str, what: &str) -> Result<Vec<DVec3>> {
+pub fn points3(text: &str, what: &str) -> Result<Vec<DVec3>> {
     text.split(';')
         .filter(|s| !s.trim().is_empty())
         .map(|s| parse::numbers::<3>(s, what).map(DVec3::from))

@@ -1,11 +1,13 @@
 //! The `shroud` command line: one subcommand per job.
 
 mod blend;
+mod blend_cmd;
 mod demo;
 pub mod fit;
 mod query;
 mod sim;
 
+pub use blend::{points3, BlendShapeArgs};
 pub use fit::{certificate_line, SurrogateShapeArgs};
 
 use anyhow::Result;
@@ -50,6 +52,8 @@ pub enum Command {
     SensorSim(crate::ingest::cli::SensorSimArgs),
     /// Drop a child point cloud onto a parent and blend them (paper 001).
     Blend(blend::BlendArgs),
+    /// Send drop/adjust/clear/commit commands (or a whole drag) to a `blend` node.
+    BlendCmd(blend_cmd::BlendCmdArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -64,5 +68,6 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Launch(args) => crate::launch::run(args),
         Command::SensorSim(args) => crate::ingest::cli::run_sensor_sim(&args),
         Command::Blend(args) => blend::run(&args),
+        Command::BlendCmd(args) => blend_cmd::run(args),
     }
 }

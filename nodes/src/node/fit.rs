@@ -7,9 +7,9 @@ use crate::cli::SurrogateShapeArgs;
 use crate::transport::{unix_ns, Mailbox};
 use anyhow::Result;
 use clap::Args;
-use shroud_core::message::{CloudMessage, SurrogateMessage, TopicKind};
+use shroud_core::message::{CloudView, MessageError, SurrogateMessage, TopicKind};
 use shroud_core::metrics::Percentiles;
-use shroud_core::surrogate::{Sides, SurrogateFitter};
+use shroud_core::surrogate::{FitError, Sides, SurrogateFitter};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use zenoh::bytes::ZBytes;
@@ -41,6 +41,7 @@ struct Arrival {
     payload: ZBytes,
     key: String,
     received_ns: u64,
+    received: Instant,
 }
 
 pub fn run(args: FitNodeArgs) -> Result<()> {
@@ -67,6 +68,7 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
                 payload: sample.payload().clone(),
                 key: sample.key_expr().to_string(),
                 received_ns: unix_ns(),
+                received: Instant::now(),
             });
         })
         .wait()
@@ -85,6 +87,7 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
     tracing::info!(%input, %output, "fitting");
     let mut fit_ms = Percentiles::new(256);
     let mut latency_ms = Percentiles::new(256);
+    let mut copied = Vec::new();
     while !ctx.stopping() {
         ctx.metrics
             .set_counter("dropped_backlog", mailbox.dropped());
@@ -92,18 +95,33 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
             continue;
         };
         ctx.metrics.add("received", 1);
+        let decode_start = Instant::now();
+        // Shared-memory payloads are one contiguous slice: the view borrows it,
+        // and an aligned cloud's floats are fitted where they lie.
         let bytes = arrival.payload.to_bytes();
-        let cloud = match CloudMessage::from_bytes(&bytes).and_then(|c| Ok((c.point_array()?, c))) {
-            Ok(decoded) => decoded,
+        let msg = match CloudView::from_bytes(&bytes) {
+            Ok(msg) => msg,
             Err(e) => {
                 ctx.drop_malformed(&arrival.key, &e);
                 continue;
             }
         };
-        let (points, msg) = cloud;
+        let points = match points_of(&msg, &mut copied) {
+            Ok(points) => points,
+            Err(e) => {
+                ctx.drop_malformed(&arrival.key, &e);
+                continue;
+            }
+        };
+        let decode_ms = decode_start.elapsed().as_secs_f64() * 1e3;
         let start = Instant::now();
-        let surrogate = match fitter.fit(&points) {
+        let surrogate = match fitter.fit(points) {
             Ok(s) => s,
+            // A NaN or an empty cloud is bad input, like a corrupted message.
+            Err(e @ FitError::Cloud(_)) => {
+                ctx.drop_malformed(&arrival.key, &e);
+                continue;
+            }
             Err(e) => {
                 ctx.metrics.add("fit_errors", 1);
                 tracing::warn!(sequence = msg.sequence, "cloud not fitted: {e}");
@@ -118,6 +136,7 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
             &msg.source,
             fit_ns,
         );
+        let publish_start = Instant::now();
         match out.to_bytes() {
             Ok(bytes) => match publisher.put(bytes).wait() {
                 Ok(()) => ctx.metrics.add("published", 1),
@@ -128,13 +147,26 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
             },
             Err(e) => tracing::error!("encode surrogate: {e}"),
         }
+        let publish_ms = publish_start.elapsed().as_secs_f64() * 1e3;
+        let transit_ms = arrival.received_ns.saturating_sub(msg.stamp_ns) as f64 / 1e6;
+        let wait_ms = (decode_start - arrival.received).as_secs_f64() * 1e3;
+        tracing::debug!(
+            sequence = msg.sequence,
+            transit_ms,
+            wait_ms,
+            decode_ms,
+            fit_ms = fit_ns as f64 / 1e6,
+            publish_ms,
+            "frame"
+        );
         fit_ms.push(fit_ns as f64 / 1e6);
         latency_ms.push(unix_ns().saturating_sub(msg.stamp_ns) as f64 / 1e6);
         ctx.metrics.set("points", points.len() as f64);
-        ctx.metrics.set(
-            "queue_wait_ms",
-            arrival.received_ns.saturating_sub(msg.stamp_ns) as f64 / 1e6,
-        );
+        // Where a frame's time goes besides the fit, for `shroud topic echo`.
+        ctx.metrics.set("transit_ms", transit_ms);
+        ctx.metrics.set("queue_wait_ms", wait_ms);
+        ctx.metrics.set("decode_ms", decode_ms);
+        ctx.metrics.set("publish_ms", publish_ms);
         if let (Some(f), Some(l)) = (fit_ms.summary(), latency_ms.summary()) {
             ctx.metrics.set("fit_p50_ms", f.p50);
             ctx.metrics.set("latency_p50_ms", l.p50);
@@ -143,4 +175,18 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
     }
     mailbox.close();
     Ok(())
+}
+
+/// The cloud's points: in place when the payload allows it, else copied into
+/// `copied` (which keeps its allocation between frames). In place, the values
+/// are checked by the fitter's first pass rather than here (see `serve`).
+fn points_of<'a>(
+    msg: &'a CloudView<'_>,
+    copied: &'a mut Vec<[f32; 3]>,
+) -> Result<&'a [[f32; 3]], MessageError> {
+    if let Some(in_place) = msg.raw_points_in_place() {
+        return Ok(in_place);
+    }
+    msg.read_points(copied)?;
+    Ok(copied)
 }

@@ -3,6 +3,7 @@
 
 mod arm;
 mod arm_file;
+mod blend;
 mod fit;
 mod guard;
 mod list;
@@ -12,6 +13,7 @@ mod scanner;
 mod sensor;
 
 pub use arm::ArmArgs;
+pub use blend::BlendNodeArgs;
 pub use fit::FitNodeArgs;
 pub use guard::GuardArgs;
 pub use list::NodeListArgs;
@@ -37,6 +39,8 @@ pub enum NodeCommand {
     Serial(SerialNodeArgs),
     /// A CAN range sensor (SocketCAN, SLCAN or a candump log) published as clouds.
     Can(CanNodeArgs),
+    /// Blend a child part onto a parent cloud, following drop/adjust commands (paper 001).
+    Blend(BlendNodeArgs),
     /// List the nodes alive in a namespace with their status.
     List(NodeListArgs),
 }
@@ -49,6 +53,7 @@ pub fn run(command: NodeCommand) -> Result<()> {
         NodeCommand::Arm(args) => arm::run(args),
         NodeCommand::Serial(args) => sensor::run_serial(args),
         NodeCommand::Can(args) => sensor::run_can(args),
+        NodeCommand::Blend(args) => blend::run(args),
         NodeCommand::List(args) => list::run(args),
     }
 }

@@ -7,7 +7,7 @@ use crate::transport::{unix_ns, PayloadWriter};
 use anyhow::{Context, Result};
 use clap::Args;
 use shroud_core::format::parse_triangle_mesh;
-use shroud_core::message::{CloudMessage, SensorPose, TopicKind};
+use shroud_core::message::{CloudView, SensorPose, TopicKind};
 use shroud_sim::{RangeScanner, ScanResolution, Scene};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -114,8 +114,9 @@ fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene, shm: bool) -> R
         }
         next += period * (behind as u32 + 1);
         let points = scene.generate(start.elapsed().as_secs_f64() * args.time_scale)?;
-        let msg = CloudMessage::new(unix_ns(), sequence, &source, SensorPose::default(), &points);
-        let payload = writer.payload(msg.to_bytes()?);
+        let msg = CloudView::new(unix_ns(), sequence, &source, SensorPose::default(), &points)
+            .aligned()?;
+        let payload = writer.encode(&msg)?;
         match publisher.put(payload).wait() {
             Ok(()) => ctx.metrics.add("published", 1),
             Err(e) => {

@@ -91,16 +91,11 @@ fn cloud_publisher<'a>(
     let source = format!("{}/{device}", ctx.name);
     let mut sequence = 0u64;
     Ok(move |scan: Scan, stats: &ReaderStats| {
-        let published = scan
-            .to_message(sequence, &source, SensorPose::default())
-            .to_bytes()
+        let message = scan.to_message(sequence, &source, SensorPose::default());
+        let published = writer
+            .encode(&message)
             .map_err(anyhow::Error::from)
-            .and_then(|b| {
-                publisher
-                    .put(writer.payload(b))
-                    .wait()
-                    .map_err(|e| anyhow::anyhow!("{e}"))
-            });
+            .and_then(|b| publisher.put(b).wait().map_err(|e| anyhow::anyhow!("{e}")));
         match published {
             Ok(()) => ctx.metrics.add("published", 1),
             Err(e) => {

@@ -1,0 +1,175 @@
+//! Blend commands: what a dashboard's drag-and-drop (or `shroud blend-cmd`) sends
+//! to a `blend` node: drop the child near a point, adjust it, clear it, or commit
+//! the blend as the new parent (paper 001, Section 3).
+
+use super::blob::{decode, encode};
+use super::error::MessageError;
+use super::{check_finite, check_version, SCHEMA_VERSION};
+use crate::blend::{BlendCommand, LocalAdjust};
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// One command. `command` is `drop` (needs `at`; `normal` optional), `adjust`
+/// (`lift` in cloud units, `spin` and `tilt` in radians), `clear` or `commit`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BlendCommandMessage {
+    pub version: u16,
+    pub stamp_ns: u64,
+    pub sequence: u64,
+    pub command: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<[f64; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal: Option<[f64; 3]>,
+    #[serde(default)]
+    pub lift: f64,
+    #[serde(default)]
+    pub spin: f64,
+    #[serde(default)]
+    pub tilt: [f64; 2],
+}
+
+impl BlendCommandMessage {
+    pub fn new(stamp_ns: u64, sequence: u64, command: &BlendCommand) -> Self {
+        let mut msg = Self {
+            version: SCHEMA_VERSION,
+            stamp_ns,
+            sequence,
+            command: String::new(),
+            at: None,
+            normal: None,
+            lift: 0.0,
+            spin: 0.0,
+            tilt: [0.0; 2],
+        };
+        msg.command = match command {
+            BlendCommand::Drop { at, normal } => {
+                msg.at = Some(at.to_array());
+                msg.normal = normal.map(|n| n.to_array());
+                "drop"
+            }
+            BlendCommand::Adjust(a) => {
+                (msg.lift, msg.spin, msg.tilt) = (a.lift, a.spin, a.tilt);
+                "adjust"
+            }
+            BlendCommand::Clear => "clear",
+            BlendCommand::Commit => "commit",
+        }
+        .to_owned();
+        msg
+    }
+
+    pub fn to_bytes(&self) -> Result<Vec<u8>, MessageError> {
+        encode(self)
+    }
+
+    /// Decodes and validates: version, a known command with its fields, finite
+    /// numbers.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, MessageError> {
+        let msg: Self = decode(bytes)?;
+        check_version(msg.version)?;
+        msg.command()?;
+        Ok(msg)
+    }
+
+    /// The command this message asks for.
+    pub fn command(&self) -> Result<BlendCommand, MessageError> {
+        let numbers = [self.lift, self.spin, self.tilt[0], self.tilt[1]];
+        check_finite("lift, spin, tilt", &numbers)?;
+        match self.command.as_str() {
+            "drop" => {
+                let at = self.at.ok_or_else(|| MessageError::Invalid {
+                    field: "at",
+                    reason: "a drop needs the point to drop at".into(),
+                })?;
+                check_finite("at", &at)?;
+                if let Some(n) = &self.normal {
+                    check_finite("normal", n)?;
+                }
+                Ok(BlendCommand::Drop {
+                    at: DVec3::from(at),
+                    normal: self.normal.map(DVec3::from),
+                })
+            }
+            "adjust" => Ok(BlendCommand::Adjust(LocalAdjust {
+                lift: self.lift,
+                spin: self.spin,
+                tilt: self.tilt,
+            })),
+            "clear" => Ok(BlendCommand::Clear),
+            "commit" => Ok(BlendCommand::Commit),
+            other => Err(MessageError::Invalid {
+                field: "command",
+                reason: format!("{other:?} is not drop, adjust, clear or commit"),
+            }),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_command_round_trips() {
+        let commands = [
+            BlendCommand::Drop {
+                at: DVec3::new(0.5, -1.0, 2.0),
+                normal: Some(DVec3::Z),
+            },
+            BlendCommand::Drop {
+                at: DVec3::ZERO,
+                normal: None,
+            },
+            BlendCommand::Adjust(LocalAdjust {
+                lift: 0.01,
+                spin: 0.5,
+                tilt: [0.1, -0.2],
+            }),
+            BlendCommand::Clear,
+            BlendCommand::Commit,
+        ];
+        for (i, c) in commands.iter().enumerate() {
+            let msg = BlendCommandMessage::new(7, i as u64, c);
+            let back = BlendCommandMessage::from_bytes(&msg.to_bytes().unwrap()).unwrap();
+            assert_eq!(back, msg);
+            assert_eq!(back.command().unwrap(), *c);
+        }
+    }
+
+    #[test]
+    fn bad_commands_are_named_errors() {
+        let drop = BlendCommand::Drop {
+            at: DVec3::ONE,
+            normal: None,
+        };
+        let mut msg = BlendCommandMessage::new(1, 1, &drop);
+        msg.at = None;
+        assert!(matches!(
+            BlendCommandMessage::from_bytes(&msg.to_bytes().unwrap()),
+            Err(MessageError::Invalid { field: "at", .. })
+        ));
+        let mut msg = BlendCommandMessage::new(1, 1, &drop);
+        msg.at = Some([0.0, f64::NAN, 0.0]);
+        assert!(matches!(
+            BlendCommandMessage::from_bytes(&msg.to_bytes().unwrap()),
+            Err(MessageError::NonFinite { index: 1, .. })
+        ));
+        let mut msg = BlendCommandMessage::new(1, 1, &BlendCommand::Clear);
+        msg.command = "explode".into();
+        assert!(matches!(
+            BlendCommandMessage::from_bytes(&msg.to_bytes().unwrap()),
+            Err(MessageError::Invalid {
+                field: "command",
+                ..
+            })
+        ));
+        let mut msg = BlendCommandMessage::new(1, 1, &BlendCommand::Clear);
+        msg.spin = f64::INFINITY;
+        assert!(BlendCommandMessage::from_bytes(&msg.to_bytes().unwrap()).is_err());
+        let bytes = msg.to_bytes().unwrap();
+        for len in 0..bytes.len() {
+            assert!(BlendCommandMessage::from_bytes(&bytes[..len]).is_err());
+        }
+    }
+}

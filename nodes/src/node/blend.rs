@@ -1,0 +1,294 @@
+//! The `blend` node: interactive scene composition (paper 001). It holds a
+//! parent cloud (a file or a snapshot of a cloud stream) and a child part,
+//! follows drop / adjust / clear / commit commands from `shroud/<ns>/blend/<name>`,
+//! and republishes the blended model as a cloud whose intensity is each point's
+//! source (0 parent, 1 child, 2 transition).
+
+use super::runtime::{run_node, NodeCommon, NodeContext};
+use crate::cli::{points3, BlendShapeArgs};
+use crate::files;
+use crate::transport::{unix_ns, Mailbox, PayloadWriter};
+use anyhow::{Context, Result};
+use clap::Args;
+use shroud_core::blend::{
+    supersede, BlendCommand, BlendParams, BlendSession, Child, PolygonOfInterest, Prepared,
+};
+use shroud_core::message::{BlendCommandMessage, CloudMessage, CloudView, SensorPose, TopicKind};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use zenoh::bytes::ZBytes;
+use zenoh::qos::CongestionControl;
+use zenoh::Wait;
+
+#[derive(Debug, Clone, Args)]
+pub struct BlendNodeArgs {
+    #[command(flatten)]
+    pub common: NodeCommon,
+    /// The parent cloud (.ply, .xyz, .csv).
+    #[arg(
+        long,
+        required_unless_present = "parent_stream",
+        conflicts_with = "parent_stream"
+    )]
+    pub parent: Option<PathBuf>,
+    /// Or: the first cloud of this stream (`shroud/<ns>/cloud/<name>`) is the parent.
+    #[arg(long)]
+    pub parent_stream: Option<String>,
+    /// The child cloud, with an open boundary (its polygon of interest).
+    #[arg(
+        long,
+        required_unless_present = "child_part",
+        conflicts_with = "child_part"
+    )]
+    pub child: Option<PathBuf>,
+    /// Or: a simulated part: hemisphere or half-cylinder.
+    #[arg(long)]
+    pub child_part: Option<String>,
+    /// Size of the simulated part (its radius), cloud units.
+    #[arg(long, default_value_t = 0.3)]
+    pub part_size: f64,
+    /// Points of the simulated part.
+    #[arg(long, default_value_t = 3_000)]
+    pub part_points: usize,
+    /// Polygon of interest in the child's coordinates: "x,y,z;x,y,z;..."
+    /// (default: the child's longest open boundary loop).
+    #[arg(long, allow_hyphen_values = true)]
+    pub polygon: Option<String>,
+    /// Command stream (`shroud/<ns>/blend/<name>`) and, unless --output is given,
+    /// the blended cloud's stream (`shroud/<ns>/cloud/<name>`).
+    #[arg(long, default_value = "blend")]
+    pub stream: String,
+    /// Stream of the blended cloud.
+    #[arg(long)]
+    pub output: Option<String>,
+    /// Republish the unchanged model this often (seconds; 0: only on change),
+    /// so that a dashboard that joins late sees it.
+    #[arg(long, default_value_t = 1.0)]
+    pub republish: f64,
+    #[command(flatten)]
+    pub shape: BlendShapeArgs,
+}
+
+pub fn run(args: BlendNodeArgs) -> Result<()> {
+    let params = args.shape.params()?;
+    anyhow::ensure!(
+        args.republish.is_finite() && args.republish >= 0.0,
+        "--republish must be >= 0 seconds"
+    );
+    let common = args.common.clone();
+    run_node(&common, "blend", move |ctx| serve(ctx, args, params))
+}
+
+fn serve(ctx: Arc<NodeContext>, args: BlendNodeArgs, params: BlendParams) -> Result<()> {
+    let commands = ctx.key(TopicKind::Blend, &args.stream)?;
+    let output = ctx.key(
+        TopicKind::Cloud,
+        args.output.as_deref().unwrap_or(&args.stream),
+    )?;
+    let child = child(&args, &params)?;
+    let Some(parent) = parent(&ctx, &args, &params)? else {
+        return Ok(()); // stopped while waiting for the parent stream
+    };
+    let mut session = BlendSession::new(parent, child, params);
+    // Every command counts (a commit must not be lost), so the queue is deep;
+    // the worker skips the drops a later drop supersedes instead.
+    let mailbox = Arc::new(Mailbox::new(1024));
+    let inbox = mailbox.clone();
+    let _subscriber = ctx
+        .session
+        .declare_subscriber(&commands)
+        .callback(move |sample| {
+            inbox.push((sample.key_expr().to_string(), sample.payload().clone()));
+        })
+        .wait()
+        .map_err(|e| anyhow::anyhow!("subscribe {commands}: {e}"))?;
+    // The model is large and each one supersedes the last: drop, like a sensor.
+    let publisher = ctx
+        .session
+        .declare_publisher(&output)
+        .congestion_control(CongestionControl::Drop)
+        .wait()
+        .map_err(|e| anyhow::anyhow!("publisher {output}: {e}"))?;
+    let writer = PayloadWriter::new(true, 64 << 20);
+    let mut out = Output {
+        ctx: &ctx,
+        publisher: &publisher,
+        writer: &writer,
+        source: format!("{}/blend", ctx.name),
+        sequence: 0,
+    };
+    tracing::info!(%commands, %output, "blending");
+    out.publish(&session);
+    let mut last_publish = Instant::now();
+    let republish = (args.republish > 0.0).then(|| Duration::from_secs_f64(args.republish));
+    while !ctx.stopping() {
+        let Some(first) = mailbox.pop(Duration::from_millis(100)) else {
+            if republish.is_some_and(|period| last_publish.elapsed() >= period) {
+                out.publish(&session);
+                last_publish = Instant::now();
+            }
+            continue;
+        };
+        let mut batch = vec![first];
+        while let Some(more) = mailbox.pop(Duration::ZERO) {
+            batch.push(more);
+        }
+        if apply_batch(&ctx, &mut session, &batch) {
+            out.publish(&session);
+            last_publish = Instant::now();
+        }
+    }
+    mailbox.close();
+    Ok(())
+}
+
+/// Decodes and applies a batch of commands; true when the model changed.
+fn apply_batch(ctx: &NodeContext, session: &mut BlendSession, batch: &[(String, ZBytes)]) -> bool {
+    let decoded: Vec<BlendCommand> = batch
+        .iter()
+        .filter_map(|(key, payload)| {
+            ctx.metrics.add("received", 1);
+            match BlendCommandMessage::from_bytes(&payload.to_bytes()).and_then(|m| m.command()) {
+                Ok(c) => Some(c),
+                Err(e) => {
+                    ctx.drop_malformed(key, &e);
+                    None
+                }
+            }
+        })
+        .collect();
+    let todo = supersede(&decoded);
+    ctx.metrics
+        .add("superseded", (decoded.len() - todo.len()) as u64);
+    let mut changed = false;
+    for command in &todo {
+        let start = Instant::now();
+        match session.apply(command) {
+            Ok(report) => {
+                changed = true;
+                ctx.metrics.add("applied", 1);
+                if let Some(r) = report {
+                    ctx.metrics
+                        .set("blend_ms", start.elapsed().as_secs_f64() * 1e3);
+                    ctx.metrics.set("centres", r.greedy.centres as f64);
+                    ctx.metrics
+                        .set("transition_points", r.kept_transition as f64);
+                }
+                ctx.metrics.set("commits", session.commits() as f64);
+            }
+            Err(e) => {
+                ctx.metrics.add("blend_errors", 1);
+                tracing::warn!(?command, "blend command refused: {e}");
+            }
+        }
+    }
+    changed
+}
+
+/// Where the blended model goes.
+struct Output<'a> {
+    ctx: &'a NodeContext,
+    publisher: &'a zenoh::pubsub::Publisher<'a>,
+    writer: &'a PayloadWriter,
+    source: String,
+    sequence: u64,
+}
+
+impl Output<'_> {
+    fn publish(&mut self, session: &BlendSession) {
+        let (points, sources) = session.model();
+        let xyz: Vec<[f32; 3]> = points.iter().map(|p| p.as_vec3().to_array()).collect();
+        let codes: Vec<f32> = (0..points.len())
+            .map(|i| f32::from(sources.get(i) as u8))
+            .collect();
+        let mut view = CloudView::new(
+            unix_ns(),
+            self.sequence,
+            &self.source,
+            SensorPose::default(),
+            &xyz,
+        );
+        view.intensity = Some(bytemuck::cast_slice::<f32, u8>(&codes).into());
+        let sent = view
+            .aligned()
+            .and_then(|v| self.writer.encode(&v))
+            .map_err(anyhow::Error::from)
+            .and_then(|payload| {
+                self.publisher
+                    .put(payload)
+                    .wait()
+                    .map_err(|e| anyhow::anyhow!("{e}"))
+            });
+        match sent {
+            Ok(()) => self.ctx.metrics.add("published", 1),
+            Err(e) => {
+                self.ctx.metrics.add("publish_errors", 1);
+                tracing::warn!("publish the blended cloud: {e}");
+            }
+        }
+        self.ctx.metrics.set("points", points.len() as f64);
+        self.sequence += 1;
+    }
+}
+
+fn child(args: &BlendNodeArgs, params: &BlendParams) -> Result<Child> {
+    let points = match (&args.child, &args.child_part) {
+        (Some(path), _) => files::read_cloud(path)?,
+        (None, Some(name)) => {
+            shroud_sim::parts::part_by_name(name, args.part_size, args.part_points)?
+        }
+        (None, None) => anyhow::bail!("give --child FILE or --child-part NAME"),
+    };
+    let cloud = Prepared::new(&points, "child", params.normal_k)?;
+    let polygon = match &args.polygon {
+        Some(text) => Some(PolygonOfInterest::from_polyline(points3(text, "polygon")?)?),
+        None => None,
+    };
+    Ok(Child::new(cloud, polygon, &params.boundary)?)
+}
+
+/// The parent: read from its file, or the first valid cloud of its stream
+/// (`None` if the node is stopped first).
+fn parent(
+    ctx: &NodeContext,
+    args: &BlendNodeArgs,
+    params: &BlendParams,
+) -> Result<Option<Prepared>> {
+    if let Some(path) = &args.parent {
+        let points = files::read_cloud(path)?;
+        let parent = Prepared::new(&points, "parent", params.normal_k)
+            .with_context(|| format!("parent {}", path.display()))?;
+        return Ok(Some(parent));
+    }
+    let stream = args.parent_stream.as_deref().unwrap_or("sim");
+    let key = ctx.key(TopicKind::Cloud, stream)?;
+    let subscriber = ctx
+        .session
+        .declare_subscriber(&key)
+        .wait()
+        .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))?;
+    tracing::info!(%key, "waiting for the parent cloud");
+    while !ctx.stopping() {
+        let Ok(Some(sample)) = subscriber.recv_timeout(Duration::from_millis(100)) else {
+            continue;
+        };
+        let decoded =
+            CloudMessage::from_bytes(&sample.payload().to_bytes()).and_then(|m| m.point_array());
+        let points = match decoded {
+            Ok(points) => points,
+            Err(e) => {
+                ctx.drop_malformed(&key, &e);
+                continue;
+            }
+        };
+        match Prepared::new(&points, "parent", params.normal_k) {
+            Ok(parent) => return Ok(Some(parent)),
+            Err(e) => {
+                ctx.metrics.add("parent_refused", 1);
+                tracing::warn!("parent cloud from {key} refused: {e}");
+            }
+        }
+    }
+    Ok(None)
+}
