@@ -69,6 +69,16 @@ impl Hasher for GridHasher {
 
 type Fast = BuildHasherDefault<GridHasher>;
 
+/// Corner `i` (bits x, y, z) of a unit cell, as an offset from its lower corner.
+fn corner_offset(i: usize) -> IVec3 {
+    IVec3::new((i & 1) as i32, ((i >> 1) & 1) as i32, ((i >> 2) & 1) as i32)
+}
+
+/// The inverse of [`corner_offset`] for offsets in {0, 1}^3.
+fn corner_index(o: IVec3) -> usize {
+    (o.x | (o.y << 1) | (o.z << 2)) as usize
+}
+
 /// Packs a grid vertex (each coordinate within +-2^20) into a u64.
 fn pack(v: IVec3) -> u64 {
     let f = |c: i32| (c as i64 + (1 << 20)) as u64 & 0x1f_ffff;
@@ -122,7 +132,7 @@ pub fn sample_zero_set(
         let mut queued: HashSet<u64, Fast> = HashSet::default();
         for &(c, _) in &frontier {
             for corner in 0..8 {
-                let v = c + IVec3::new(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+                let v = c + corner_offset(corner);
                 let key = pack(v);
                 if !values.contains_key(&key) && queued.insert(key) {
                     needed.push(v);
@@ -142,7 +152,7 @@ pub fn sample_zero_set(
         for (c, seed) in frontier {
             let mut positive = 0;
             for corner in 0..8 {
-                let v = c + IVec3::new(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+                let v = c + corner_offset(corner);
                 if values.get(&pack(v)).copied().unwrap_or(0.0) >= 0.0 {
                     positive += 1;
                 }
@@ -169,22 +179,31 @@ pub fn sample_zero_set(
     let mut edges: HashSet<(u64, u8), Fast> = HashSet::default();
     let mut raw: Vec<(DVec3, f64)> = Vec::new();
     for &c in &crossed {
+        // The cell's eight corner values, looked up once (every corner of a
+        // crossed cell was evaluated): the 19 edges below only index them.
+        let mut corner_values = [0.0f64; 8];
+        for (corner, value) in corner_values.iter_mut().enumerate() {
+            let v = c + corner_offset(corner);
+            *value = values.get(&pack(v)).copied().unwrap_or(0.0);
+        }
         for corner in 0..8 {
-            let o = IVec3::new(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+            let o = corner_offset(corner);
+            let sa = corner_values[corner];
             for (k, d) in DIRECTIONS.iter().enumerate() {
                 let end = o + *d;
                 if end.max_element() > 1 {
                     continue;
                 }
-                let (a, b) = (c + o, c + end);
-                let (Some(&sa), Some(&sb)) = (values.get(&pack(a)), values.get(&pack(b))) else {
-                    continue;
-                };
+                let sb = corner_values[corner_index(end)];
+                let a = c + o;
                 if (sa >= 0.0) == (sb >= 0.0) || !edges.insert((pack(a), k as u8)) {
                     continue;
                 }
                 let t = sa / (sa - sb);
-                raw.push((vertex(a).lerp(vertex(b), t), cell * d.as_dvec3().length()));
+                raw.push((
+                    vertex(a).lerp(vertex(a + *d), t),
+                    cell * d.as_dvec3().length(),
+                ));
             }
         }
     }

@@ -1,6 +1,6 @@
 //! A decoded scan: the sensor's sequence number and stamp, and its points in metres.
 
-use crate::message::{CloudMessage, SensorPose};
+use crate::message::{CloudMessage, CloudView, MessageError, SensorPose};
 
 /// One complete sensor scan, as every ingest decoder returns it and every encoder
 /// takes it.
@@ -38,6 +38,24 @@ impl Scan {
     }
 }
 
+impl Scan {
+    /// [`Scan::to_message`] without copies, padded so that a subscriber on the
+    /// same machine can read the points in place ([`CloudView::aligned`]).
+    pub fn to_view<'a>(
+        &'a self,
+        sequence: u64,
+        source: &'a str,
+        pose: SensorPose,
+    ) -> Result<CloudView<'a>, MessageError> {
+        let view = CloudView::new(self.stamp_ns, sequence, source, pose, &self.points);
+        match &self.intensity {
+            Some(intensity) => view.with_intensity(intensity),
+            None => view,
+        }
+        .aligned()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -52,5 +70,12 @@ mod tests {
         assert_eq!(back.sequence, 9);
         assert_eq!(back.point_array().unwrap(), scan.points);
         assert_eq!(back.intensity_array().unwrap(), scan.intensity);
+        // The padded view decodes to the same message.
+        let view = scan
+            .to_view(9, "serial:/dev/ttyUSB0", SensorPose::default())
+            .unwrap();
+        let bytes = view.to_bytes().unwrap();
+        assert_eq!(bytes.len() % 4, 0);
+        assert_eq!(CloudMessage::from_bytes(&bytes).unwrap(), back);
     }
 }

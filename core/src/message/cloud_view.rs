@@ -65,6 +65,13 @@ impl<'a> CloudView<'a> {
         }
     }
 
+    /// The same message with one intensity per point (no copy on little-endian
+    /// machines).
+    pub fn with_intensity(mut self, intensity: &'a [f32]) -> Self {
+        self.intensity = Some(le_bytes(bytemuck::cast_slice(intensity)));
+        self
+    }
+
     /// The same message with an `align` field that puts the points blob at a
     /// multiple of 4 bytes from the start of the encoding. Encoded into a
     /// 4-byte-aligned buffer (shared memory), the receiver can then read the

@@ -202,14 +202,14 @@ impl Output<'_> {
         let codes: Vec<f32> = (0..points.len())
             .map(|i| f32::from(sources.get(i) as u8))
             .collect();
-        let mut view = CloudView::new(
+        let view = CloudView::new(
             unix_ns(),
             self.sequence,
             &self.source,
             SensorPose::default(),
             &xyz,
-        );
-        view.intensity = Some(bytemuck::cast_slice::<f32, u8>(&codes).into());
+        )
+        .with_intensity(&codes);
         let sent = view
             .aligned()
             .and_then(|v| self.writer.encode(&v))

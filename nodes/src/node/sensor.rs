@@ -91,9 +91,9 @@ fn cloud_publisher<'a>(
     let source = format!("{}/{device}", ctx.name);
     let mut sequence = 0u64;
     Ok(move |scan: Scan, stats: &ReaderStats| {
-        let message = scan.to_message(sequence, &source, SensorPose::default());
-        let published = writer
-            .encode(&message)
+        let published = scan
+            .to_view(sequence, &source, SensorPose::default())
+            .and_then(|view| writer.encode(&view))
             .map_err(anyhow::Error::from)
             .and_then(|b| publisher.put(b).wait().map_err(|e| anyhow::anyhow!("{e}")));
         match published {

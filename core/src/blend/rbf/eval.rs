@@ -64,24 +64,45 @@ impl Rbf {
     /// `grad |y - y_i|^3 = 3 |y - y_i| (y - y_i)`.
     pub fn value_gradient(&self, p: DVec3) -> (f64, DVec3) {
         let q = self.local(p);
-        let mut sum = 0.0;
-        let (mut gx, mut gy, mut gz) = (0.0, 0.0, 0.0);
-        for i in 0..self.weights.len() {
-            let (dx, dy, dz) = (q.x - self.xs[i], q.y - self.ys[i], q.z - self.zs[i]);
-            let r2 = dx * dx + dy * dy + dz * dz;
-            let r = r2.sqrt();
-            let w = self.weights[i];
-            sum += w * r2 * r;
-            let g = 3.0 * w * r;
-            gx += g * dx;
-            gy += g * dy;
-            gz += g * dz;
+        let n = self.weights.len();
+        let split = n - n % LANES;
+        // LANES independent accumulators, as in `value`, so that the sum
+        // vectorises (one accumulator would serialise on the adds).
+        let mut acc = [[0.0f64; LANES]; 4];
+        for base in (0..split).step_by(LANES) {
+            for l in 0..LANES {
+                let [s, gx, gy, gz] = self.kernel_terms(q, base + l);
+                acc[0][l] += s;
+                acc[1][l] += gx;
+                acc[2][l] += gy;
+                acc[3][l] += gz;
+            }
         }
+        let mut total = acc.map(|a| a.iter().sum::<f64>());
+        for i in split..n {
+            let terms = self.kernel_terms(q, i);
+            for (t, x) in total.iter_mut().zip(terms) {
+                *t += x;
+            }
+        }
+        let [sum, gx, gy, gz] = total;
         let value =
             sum + self.poly[0] + self.poly[1] * q.x + self.poly[2] * q.y + self.poly[3] * q.z;
         let gradient =
             DVec3::new(gx + self.poly[1], gy + self.poly[2], gz + self.poly[3]) / self.scale;
         (value, gradient)
+    }
+
+    /// Centre `i`'s term of `s` and of its gradient at the scaled point `q`:
+    /// `w |d|^3` and `3 w |d| d` with `d = q - y_i`.
+    #[inline(always)]
+    fn kernel_terms(&self, q: DVec3, i: usize) -> [f64; 4] {
+        let (dx, dy, dz) = (q.x - self.xs[i], q.y - self.ys[i], q.z - self.zs[i]);
+        let r2 = dx * dx + dy * dy + dz * dz;
+        let r = r2.sqrt();
+        let w = self.weights[i];
+        let g = 3.0 * w * r;
+        [w * r2 * r, g * dx, g * dy, g * dz]
     }
 
     /// `s` at many points, in parallel.
