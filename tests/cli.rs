@@ -244,3 +244,41 @@ fn bench_quick_prints_the_paper_tables() {
     }
     assert!(stdout.contains("| 10K | 14.5 |"), "{stdout}");
 }
+
+#[test]
+fn smooth_info_prints_the_classification_and_the_g1_dimension() {
+    let dir = tempfile::tempdir().unwrap();
+    // The paper's M_T: a triangle split into three quads around a valence-3 EV.
+    let m_t = path(dir.path(), "m_t.obj");
+    std::fs::write(
+        &m_t,
+        "v 0 0 0\nv 2 0 0\nv 1 1.732 0\nv 1 0 0\nv 1.5 0.866 0\nv 0.5 0.866 0\nv 1 0.577 0\n\
+         f 1 4 7 6\nf 2 5 7 4\nf 3 6 7 5\n",
+    )
+    .unwrap();
+    let stdout = ok(shroud(&["smooth", "--mesh", s(&m_t), "--info"]));
+    assert!(stdout.contains("dimension: 72"), "{stdout}");
+    assert!(stdout.contains("inner extraordinary 1"), "{stdout}");
+    assert!(!stdout.contains("refined once"), "{stdout}");
+    // A cube: adjacent EVs, refined once and told so (24 faces).
+    let cube = path(dir.path(), "cube.obj");
+    std::fs::write(
+        &cube,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+         f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n",
+    )
+    .unwrap();
+    let stdout = ok(shroud(&["smooth", "--mesh", s(&cube), "--info"]));
+    assert!(stdout.contains("refined once"), "{stdout}");
+    assert!(stdout.contains("faces: 24"), "{stdout}");
+    // Bad meshes are named errors.
+    let bad = path(dir.path(), "tri.obj");
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    fails_with(shroud(&["smooth", "--mesh", s(&bad), "--info"]), "tri.obj");
+    std::fs::write(&bad, "").unwrap();
+    fails_with(shroud(&["smooth", "--mesh", s(&bad), "--info"]), "tri.obj");
+    fails_with(
+        shroud(&["smooth", "--mesh", "/nonexistent.obj", "--info"]),
+        "cannot read",
+    );
+}

@@ -1,10 +1,11 @@
 //! Quad meshes of arbitrary topology (Marsala, Mantzaflaris & Mourrain, "Point Cloud
 //! Fitting by G1 Smooth Spline Functions", Sections 2-3): validated construction,
 //! half-edge adjacency, the paper's vertex/edge classification, Catmull-Clark
-//! refinement and OBJ bytes.
+//! refinement, OBJ bytes, and the dimension of the G1 space (Corollary 1).
 
 mod catmull_clark;
 mod classify;
+mod dimension;
 mod error;
 mod half_edge;
 mod obj;
@@ -15,6 +16,7 @@ mod tests;
 
 pub use catmull_clark::catmull_clark;
 pub use classify::{classify, EdgeKind, MeshClassification, VertexKind};
+pub use dimension::{G1Dimension, G1Domain};
 pub use error::MeshError;
 pub use half_edge::HalfEdgeMesh;
 pub use obj::{parse_obj, write_obj, ObjError};

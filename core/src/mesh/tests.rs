@@ -433,3 +433,99 @@ fn mesh_catmull_clark_point_rules() {
     assert_eq!(r.vertices()[9 + e], [0.5, 0.0, 0.5]);
     assert_eq!(r.vertices()[0], [0.0, 0.0, 0.0]);
 }
+
+/// A regular hexagon split into six quads around a valence-6 EV (centre to
+/// the edge midpoints).
+fn hexagon() -> QuadMesh {
+    let corner = |k: usize| {
+        let a = std::f64::consts::PI / 3.0 * k as f64;
+        [a.cos(), a.sin(), 0.0]
+    };
+    let mid = |k: usize| {
+        let (p, q) = (corner(k), corner((k + 1) % 6));
+        [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, 0.0]
+    };
+    // 0..6 corners, 6..12 midpoints (6 + k between corners k and k+1), 12 centre.
+    let mut vertices: Vec<[f64; 3]> = (0..6).map(corner).collect();
+    vertices.extend((0..6).map(mid));
+    vertices.push([0.0; 3]);
+    let faces = (0..6u32).map(|k| [12, 6 + (k + 5) % 6, k, 6 + k]).collect();
+    QuadMesh::new(vertices, faces).expect("hexagon is valid")
+}
+
+fn refined(mesh: QuadMesh, times: usize) -> QuadMesh {
+    (0..times).fold(mesh, |m, _| catmull_clark(&m).expect("refine"))
+}
+
+#[test]
+fn g1_dimension_matches_corollary_1_on_the_papers_meshes() {
+    // M_T and its four refinements (Table 1).
+    let mut mesh = m_t();
+    for expected in [72, 240, 864, 3264, 12672] {
+        let domain = G1Domain::new(mesh.clone()).unwrap();
+        assert!(!domain.refined);
+        assert_eq!(
+            domain.dimension().total(),
+            expected,
+            "{} faces",
+            mesh.face_count()
+        );
+        mesh = refined(mesh, 1);
+    }
+    // The 96-patch hexagonal mesh (Table 2) and the 96-face sphere (Table 3).
+    let hex = refined(hexagon(), 2);
+    assert_eq!(hex.face_count(), 96);
+    assert_eq!(G1Domain::new(hex).unwrap().dimension().total(), 1725);
+    let sphere = refined(cube(), 2);
+    assert_eq!(sphere.face_count(), 96);
+    assert_eq!(G1Domain::new(sphere).unwrap().dimension().total(), 1512);
+}
+
+#[test]
+fn g1_dimension_of_a_regular_grid_is_the_c1_biquintic_count() {
+    // Without EVs the G1 space is the C1 space: on an n x n grid, biquintic
+    // splines with interior knots of multiplicity 4 have 6 + 4 (n - 1) = 4n + 2
+    // functions per direction. Corollary 1 counts 4 (V + E + F) = 4 (2n + 1)^2:
+    // an independent check of the regular part of the formula.
+    for n in 1..6u32 {
+        let (v, f) = grid(n);
+        let mesh = QuadMesh::new(v, f).unwrap();
+        let d = G1Domain::new(mesh).unwrap().dimension();
+        assert_eq!(d.total(), ((4 * n + 2) * (4 * n + 2)) as usize, "n = {n}");
+    }
+}
+
+#[test]
+fn adjacent_extraordinary_vertices_are_refined_once() {
+    // The cube's EVs are joined by edges: not isolated.
+    let domain = G1Domain::new(cube()).unwrap();
+    assert!(domain.refined);
+    assert_eq!(domain.mesh.face_count(), 24);
+    assert!(domain.classification.has_isolated_evs());
+}
+
+#[test]
+fn a_boundary_ev_counts_its_valence_plus_two() {
+    // An L of three unit quads: the inner corner (1, 1) is a boundary EV with
+    // four edges (kappa = 3 patches): N + 2 = 6 functions. Five corners and two
+    // boundary regular vertices take 4 each; two extraordinary edges 2 each,
+    // eight boundary edges 4 each, three faces 4 each: 34 + 36 + 12.
+    let vertices = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [2.0, 1.0, 0.0],
+        [0.0, 2.0, 0.0],
+        [1.0, 2.0, 0.0],
+    ];
+    let faces = vec![[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6]];
+    let mesh = QuadMesh::new(vertices, faces).unwrap();
+    let domain = G1Domain::new(mesh).unwrap();
+    let c = &domain.classification;
+    assert_eq!((c.n_bev, c.n_c, c.n_brv, c.n_ee, c.n_be), (1, 5, 2, 2, 8));
+    let d = domain.dimension();
+    assert_eq!((d.vertex, d.edge, d.face), (34, 36, 12));
+    assert_eq!(d.total(), 82);
+}

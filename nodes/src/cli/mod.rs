@@ -6,6 +6,7 @@ mod demo;
 pub mod fit;
 mod query;
 mod sim;
+mod smooth;
 
 pub use blend::{points3, BlendShapeArgs};
 pub use fit::{certificate_line, SurrogateShapeArgs};
@@ -54,6 +55,9 @@ pub enum Command {
     Blend(blend::BlendArgs),
     /// Send drop/adjust/clear/commit commands (or a whole drag) to a `blend` node.
     BlendCmd(blend_cmd::BlendCmdArgs),
+    /// The G1 smooth fitter's domain (paper 004): mesh classification and the
+    /// dimension of its G1 space (`--info`).
+    Smooth(smooth::SmoothArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -69,5 +73,6 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::SensorSim(args) => crate::ingest::cli::run_sensor_sim(&args),
         Command::Blend(args) => blend::run(&args),
         Command::BlendCmd(args) => blend_cmd::run(args),
+        Command::Smooth(args) => smooth::run(&args),
     }
 }
