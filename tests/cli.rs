@@ -258,6 +258,7 @@ fn smooth_info_prints_the_classification_and_the_g1_dimension() {
     .unwrap();
     let stdout = ok(shroud(&["smooth", "--mesh", s(&m_t), "--info"]));
     assert!(stdout.contains("dimension: 72"), "{stdout}");
+    assert!(stdout.contains("basis: 72 functions"), "{stdout}");
     assert!(stdout.contains("inner extraordinary 1"), "{stdout}");
     assert!(!stdout.contains("refined once"), "{stdout}");
     // A cube: adjacent EVs, refined once and told so (24 faces).
@@ -271,6 +272,18 @@ fn smooth_info_prints_the_classification_and_the_g1_dimension() {
     let stdout = ok(shroud(&["smooth", "--mesh", s(&cube), "--info"]));
     assert!(stdout.contains("refined once"), "{stdout}");
     assert!(stdout.contains("faces: 24"), "{stdout}");
+    // An L of three quads has a boundary EV: the dimension is counted, the
+    // basis is not built yet, and the output says so.
+    let l_shape = path(dir.path(), "l.obj");
+    std::fs::write(
+        &l_shape,
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nv 0 2 0\nv 1 2 0\n\
+         f 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\n",
+    )
+    .unwrap();
+    let stdout = ok(shroud(&["smooth", "--mesh", s(&l_shape), "--info"]));
+    assert!(stdout.contains("dimension: 82"), "{stdout}");
+    assert!(stdout.contains("basis: not computed"), "{stdout}");
     // Bad meshes are named errors.
     let bad = path(dir.path(), "tri.obj");
     std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();

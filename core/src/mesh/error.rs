@@ -38,6 +38,8 @@ pub enum MeshError {
     UnusedVertex { vertex: usize },
     #[error("the faces around vertex {vertex} form more than one fan (non-manifold vertex)")]
     NonManifoldVertex { vertex: usize },
+    #[error("not supported yet: {what}")]
+    Unsupported { what: &'static str },
     #[error("the mesh has {count} vertices, more than u32 indices can address")]
     TooManyVertices { count: usize },
 }

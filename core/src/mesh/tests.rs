@@ -529,3 +529,115 @@ fn a_boundary_ev_counts_its_valence_plus_two() {
     assert_eq!((d.vertex, d.edge, d.face), (34, 36, 12));
     assert_eq!(d.total(), 82);
 }
+
+/// The dimension of the null space of the G1 constraints (eq. 3), by SVD.
+fn null_space_dimension(domain: &G1Domain) -> usize {
+    let rows = g1_constraints(domain).unwrap();
+    let cols = PATCH_COEFFICIENTS * domain.mesh.face_count();
+    let mut a = faer::Mat::<f64>::zeros(rows.len().max(1), cols);
+    for (r, row) in rows.iter().enumerate() {
+        for &(k, w) in row {
+            a[(r, k)] += w;
+        }
+    }
+    let s = a.singular_values().unwrap();
+    let tol = 1e-9 * s.first().copied().unwrap_or(1.0);
+    cols - s.iter().filter(|&&x| x > tol).count()
+}
+
+#[test]
+fn g1_constraints_have_the_null_space_of_corollary_1() {
+    let (v, f) = grid(3);
+    let meshes = [
+        ("M_T", m_t()),
+        ("M_T refined", refined(m_t(), 1)),
+        ("hexagon", hexagon()),
+        ("grid 3x3", QuadMesh::new(v, f).unwrap()),
+        ("cube refined", refined(cube(), 1)),
+    ];
+    for (name, mesh) in meshes {
+        let domain = G1Domain::new(mesh).unwrap();
+        assert_eq!(
+            null_space_dimension(&domain),
+            domain.dimension().total(),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn g1_basis_is_local_independent_and_g1_with_the_dimension_of_corollary_1() {
+    let (v, f) = grid(2);
+    let meshes = [
+        ("M_T", m_t()),
+        ("M_T refined", refined(m_t(), 1)),
+        ("hexagon", hexagon()),
+        ("grid 2x2", QuadMesh::new(v, f).unwrap()),
+        ("cube refined", refined(cube(), 1)),
+    ];
+    for (name, mesh) in meshes {
+        let domain = G1Domain::new(mesh).unwrap();
+        let basis = G1Basis::new(&domain).unwrap();
+        let expected = domain.dimension();
+        assert_eq!(basis.len(), expected.total(), "{name}: count");
+        let count = |pred: fn(&Feature) -> bool| basis.features.iter().filter(|f| pred(f)).count();
+        assert_eq!(
+            count(|f| matches!(f, Feature::Face(_))),
+            expected.face,
+            "{name}: faces"
+        );
+        assert_eq!(
+            count(|f| matches!(f, Feature::Edge(_))),
+            expected.edge,
+            "{name}: edges"
+        );
+        assert_eq!(
+            count(|f| matches!(f, Feature::Vertex(_))),
+            expected.vertex,
+            "{name}: vertices"
+        );
+        // Every function and random combinations satisfy eq. 3.
+        let rows = g1_constraints(&domain).unwrap();
+        for k in 0..basis.len() {
+            let mut w = vec![0.0; basis.len()];
+            w[k] = 1.0;
+            assert!(
+                defect(&rows, &basis.combine(&w)) < 1e-10,
+                "{name}: function {k}"
+            );
+        }
+        let mut x = 0.37f64;
+        let w: Vec<f64> = (0..basis.len())
+            .map(|_| {
+                x = (x * 997.0 + 0.123).fract();
+                x - 0.5
+            })
+            .collect();
+        assert!(
+            defect(&rows, &basis.combine(&w)) < 1e-10,
+            "{name}: combination"
+        );
+        // Independent: the coefficient matrix has full column rank.
+        let mut m = faer::Mat::<f64>::zeros(basis.coefficients, basis.len());
+        for (j, function) in basis.functions.iter().enumerate() {
+            for &(k, value) in function {
+                m[(k, j)] = value;
+            }
+        }
+        let s = m.singular_values().unwrap();
+        let rank = s.iter().filter(|&&x| x > 1e-9 * s[0]).count();
+        assert_eq!(rank, basis.len(), "{name}: independence");
+        // Local: a vertex function lives on the faces around its vertex.
+        for (function, feature) in basis.functions.iter().zip(&basis.features) {
+            if let Feature::Vertex(v) = feature {
+                for &(k, _) in function {
+                    let face = domain.mesh.faces()[k / PATCH_COEFFICIENTS];
+                    assert!(
+                        face.contains(&(*v as u32)),
+                        "{name}: vertex {v} function leaks"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -1,11 +1,13 @@
 //! `shroud smooth --mesh domain.obj --info`: the quad-mesh domain of the G1
-//! smooth fitter (paper 004): its classification (Section 2) and the dimension
-//! of its G1 space (Corollary 1). The least-squares fit over that space is not
-//! part of this version, so `--info` is required.
+//! smooth fitter (paper 004): its classification (Section 2), the dimension of
+//! its G1 space (Corollary 1) and the size of the computed local basis. The
+//! least-squares fit over that space is not part of this version, so `--info`
+//! is required.
 
 use anyhow::{Context, Result};
-use shroud_core::mesh::{parse_obj, G1Domain};
+use shroud_core::mesh::{parse_obj, G1Basis, G1Domain, MeshError};
 use std::path::PathBuf;
+use std::time::Instant;
 
 #[derive(clap::Args, Debug)]
 pub struct SmoothArgs {
@@ -44,5 +46,35 @@ pub fn run(args: &SmoothArgs) -> Result<()> {
         d.vertex, d.edge, d.face
     );
     println!("dimension: {}", d.total());
+    // The computed basis must agree with the formula; say so either way.
+    let start = Instant::now();
+    let basis = match G1Basis::new(&domain) {
+        Ok(basis) => basis,
+        Err(MeshError::Unsupported { what }) => {
+            println!("basis: not computed ({what} is not supported yet)");
+            return Ok(());
+        }
+        Err(e) => {
+            return Err(e)
+                .with_context(|| format!("{}: cannot build the G1 basis", args.mesh.display()))
+        }
+    };
+    let matches = basis.len() == d.total();
+    println!(
+        "basis: {} functions computed in {:.1} ms ({})",
+        basis.len(),
+        start.elapsed().as_secs_f64() * 1e3,
+        if matches {
+            "matches the dimension"
+        } else {
+            "DOES NOT match the dimension"
+        }
+    );
+    anyhow::ensure!(
+        matches,
+        "the computed basis has {} functions, Corollary 1 says {}",
+        basis.len(),
+        d.total()
+    );
     Ok(())
 }
