@@ -295,3 +295,75 @@ fn smooth_info_prints_the_classification_and_the_g1_dimension() {
         "cannot read",
     );
 }
+
+#[test]
+fn smooth_fits_a_graph_over_a_planar_domain() {
+    let dir = tempfile::tempdir().unwrap();
+    let m_t = path(dir.path(), "m_t.obj");
+    std::fs::write(
+        &m_t,
+        "v 0 0 0\nv 2 0 0\nv 1 1.7320508 0\nv 1 0 0\nv 1.5 0.8660254 0\nv 0.5 0.8660254 0\nv 1 0.57735027 0\n\
+         f 1 4 7 6\nf 2 5 7 4\nf 3 6 7 5\n",
+    )
+    .unwrap();
+    // A smooth graph sampled inside the triangle (0,0), (2,0), (1, sqrt 3).
+    let mut text = String::new();
+    let n = 60;
+    for a in 0..=n {
+        for b in 0..=(n - a) {
+            let (s, t) = (a as f64 / n as f64, b as f64 / n as f64);
+            let (x, y) = (2.0 * s + t, 3f64.sqrt() * t);
+            let (x, y) = (0.98 * x + 0.02, 0.98 * y + 0.005); // strictly inside
+            text += &format!("{x} {y} {}\n", 0.3 * x * y + 0.1 * y * y);
+        }
+    }
+    let cloud = path(dir.path(), "graph.xyz");
+    std::fs::write(&cloud, &text).unwrap();
+    let out = path(dir.path(), "fit.obj");
+    let stdout = ok(shroud(&[
+        "smooth",
+        s(&cloud),
+        "--mesh",
+        s(&m_t),
+        "-o",
+        s(&out),
+    ]));
+    assert!(stdout.contains("with 72 G1 functions"), "{stdout}");
+    let rmse: f64 = stdout
+        .split("RMSE ")
+        .nth(1)
+        .and_then(|r| r.trim().parse().ok())
+        .expect("an RMSE");
+    assert!(rmse < 1e-2, "{stdout}");
+    assert!(std::fs::read_to_string(&out).unwrap().contains("\nf "));
+    let json = path(dir.path(), "fit.json");
+    ok(shroud(&[
+        "smooth",
+        s(&cloud),
+        "--mesh",
+        s(&m_t),
+        "--lambda",
+        "1e-4",
+        "-o",
+        s(&json),
+    ]));
+    let patches: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(patches["patches"].as_array().unwrap().len(), 3);
+
+    // A point outside the domain, too few points, and a bad lambda are errors.
+    let outside = path(dir.path(), "outside.xyz");
+    std::fs::write(&outside, format!("{text}5 5 0\n")).unwrap();
+    fails_with(
+        shroud(&["smooth", s(&outside), "--mesh", s(&m_t)]),
+        "outside the planar domain",
+    );
+    let few = path(dir.path(), "few.xyz");
+    std::fs::write(&few, "0.5 0.2 0\n1 0.5 0\n1.5 0.2 0\n").unwrap();
+    fails_with(shroud(&["smooth", s(&few), "--mesh", s(&m_t)]), "singular");
+    fails_with(
+        shroud(&["smooth", s(&cloud), "--mesh", s(&m_t), "--lambda", "-1"]),
+        "lambda",
+    );
+    fails_with(shroud(&["smooth", "--mesh", s(&m_t)]), "--info");
+}

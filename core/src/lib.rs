@@ -14,6 +14,7 @@ pub mod mesh;
 pub mod message;
 pub mod metrics;
 pub mod query;
+pub mod smooth;
 pub mod spline;
 pub mod surrogate;
 pub mod tight;

@@ -6,6 +6,7 @@
 mod catmull_clark;
 mod classify;
 mod dimension;
+mod domains;
 mod error;
 mod g1_basis;
 mod g1_constraints;
@@ -19,6 +20,7 @@ mod tests;
 pub use catmull_clark::catmull_clark;
 pub use classify::{classify, EdgeKind, MeshClassification, VertexKind};
 pub use dimension::{G1Dimension, G1Domain};
+pub use domains::{cube_mesh, hexagon_mesh, triangle_mesh};
 pub use error::MeshError;
 pub use g1_basis::{BasisFunction, Feature, G1Basis};
 pub use g1_constraints::{defect, g1_constraints, Row, PATCH_COEFFICIENTS};

@@ -4,18 +4,15 @@
 use super::*;
 
 fn cube() -> QuadMesh {
-    let vertices = (0..8)
-        .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
-        .collect();
-    let faces = vec![
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    QuadMesh::new(vertices, faces).expect("cube is valid")
+    cube_mesh()
+}
+
+fn m_t() -> QuadMesh {
+    triangle_mesh()
+}
+
+fn hexagon() -> QuadMesh {
+    hexagon_mesh()
 }
 
 /// An n x n grid of unit quads in the plane z = 0.
@@ -35,19 +32,6 @@ fn grid(n: u32) -> (Vec<[f64; 3]>, Vec<[u32; 4]>) {
         }
     }
     (vertices, faces)
-}
-
-/// The paper's M_T: a triangle split into three quads around a valence-3 EV.
-fn m_t() -> QuadMesh {
-    let a = [0.0, 0.0, 0.0];
-    let b = [2.0, 0.0, 0.0];
-    let c = [1.0, 3f64.sqrt(), 0.0];
-    let mid = |p: [f64; 3], q: [f64; 3]| [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, 0.0];
-    let o = [1.0, 3f64.sqrt() / 3.0, 0.0];
-    // 0 A, 1 B, 2 C, 3 mAB, 4 mBC, 5 mCA, 6 O
-    let vertices = vec![a, b, c, mid(a, b), mid(b, c), mid(c, a), o];
-    let faces = vec![[0, 3, 6, 5], [1, 4, 6, 3], [2, 5, 6, 4]];
-    QuadMesh::new(vertices, faces).expect("M_T is valid")
 }
 
 fn check_half_edges(mesh: &QuadMesh) {
@@ -432,25 +416,6 @@ fn mesh_catmull_clark_point_rules() {
         .expect("edge 0-1");
     assert_eq!(r.vertices()[9 + e], [0.5, 0.0, 0.5]);
     assert_eq!(r.vertices()[0], [0.0, 0.0, 0.0]);
-}
-
-/// A regular hexagon split into six quads around a valence-6 EV (centre to
-/// the edge midpoints).
-fn hexagon() -> QuadMesh {
-    let corner = |k: usize| {
-        let a = std::f64::consts::PI / 3.0 * k as f64;
-        [a.cos(), a.sin(), 0.0]
-    };
-    let mid = |k: usize| {
-        let (p, q) = (corner(k), corner((k + 1) % 6));
-        [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, 0.0]
-    };
-    // 0..6 corners, 6..12 midpoints (6 + k between corners k and k+1), 12 centre.
-    let mut vertices: Vec<[f64; 3]> = (0..6).map(corner).collect();
-    vertices.extend((0..6).map(mid));
-    vertices.push([0.0; 3]);
-    let faces = (0..6u32).map(|k| [12, 6 + (k + 5) % 6, k, 6 + k]).collect();
-    QuadMesh::new(vertices, faces).expect("hexagon is valid")
 }
 
 fn refined(mesh: QuadMesh, times: usize) -> QuadMesh {

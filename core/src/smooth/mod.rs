@@ -1,0 +1,24 @@
+//! Least-squares fitting by G1 smooth spline functions (Marsala et al., paper
+//! 004, Section 6): the biquintic multipatch over a quad-mesh domain whose
+//! coefficients minimise eq. (26), the squared distances to the data plus
+//! lambda times the thin-plate energy (27), assembled patch by patch and solved
+//! with a sparse Cholesky factorisation; the error measures (28); and the
+//! location of points in a planar quad-mesh domain.
+
+// Bernstein tensors are clearer with explicit (i, j) indices.
+#![allow(clippy::needless_range_loop)]
+
+mod bernstein;
+mod error;
+mod fit;
+mod locate;
+mod thin_plate;
+
+#[cfg(test)]
+mod tests;
+
+pub use bernstein::{bernstein5, bernstein5_derivative};
+pub use error::SmoothError;
+pub use fit::{FitErrors, Sample, SmoothFitter, SmoothSurface};
+pub use locate::PlanarLocator;
+pub use thin_plate::thin_plate_gram;
