@@ -32,6 +32,15 @@ fn ok(out: Output) -> String {
     stdout
 }
 
+/// The RMSE that `shroud smooth` prints.
+fn rmse_of(stdout: &str) -> f64 {
+    stdout
+        .split("RMSE ")
+        .nth(1)
+        .and_then(|r| r.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no RMSE in {stdout}"))
+}
+
 /// Asserts a clean failure: non-zero exit, an error naming `needle`, no panic.
 fn fails_with(out: Output, needle: &str) {
     let (stdout, stderr) = text(&out);
@@ -329,11 +338,7 @@ fn smooth_fits_a_graph_over_a_planar_domain() {
         s(&out),
     ]));
     assert!(stdout.contains("with 72 G1 functions"), "{stdout}");
-    let rmse: f64 = stdout
-        .split("RMSE ")
-        .nth(1)
-        .and_then(|r| r.trim().parse().ok())
-        .expect("an RMSE");
+    let rmse = rmse_of(&stdout);
     assert!(rmse < 1e-2, "{stdout}");
     assert!(std::fs::read_to_string(&out).unwrap().contains("\nf "));
     let json = path(dir.path(), "fit.json");
@@ -366,4 +371,52 @@ fn smooth_fits_a_graph_over_a_planar_domain() {
         "lambda",
     );
     fails_with(shroud(&["smooth", "--mesh", s(&m_t)]), "--info");
+}
+
+#[test]
+fn smooth_fits_a_radial_function_over_the_sphere() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 6000;
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let mut text = String::new();
+    for i in 0..n {
+        let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+        let r = (1.0 - z * z).sqrt();
+        let a = golden * i as f64;
+        let radius = 1.0 + 0.1 * z;
+        text += &format!(
+            "{} {} {}\n",
+            radius * r * a.cos(),
+            radius * r * a.sin(),
+            radius * z
+        );
+    }
+    let cloud = path(dir.path(), "blob.xyz");
+    std::fs::write(&cloud, &text).unwrap();
+    let out = path(dir.path(), "blob.obj");
+    let stdout = ok(shroud(&[
+        "smooth",
+        s(&cloud),
+        "--domain",
+        "sphere:1",
+        "-o",
+        s(&out),
+    ]));
+    assert!(stdout.contains("G1 functions on 24 patches"), "{stdout}");
+    let rmse = rmse_of(&stdout);
+    assert!(rmse < 1e-3, "{stdout}");
+    fails_with(
+        shroud(&["smooth", s(&cloud), "--domain", "torus"]),
+        "expected sphere",
+    );
+    fails_with(
+        shroud(&["smooth", s(&cloud), "--domain", "sphere:9"]),
+        "LEVELS",
+    );
+    let origin = path(dir.path(), "origin.xyz");
+    std::fs::write(&origin, format!("{text}0 0 0\n")).unwrap();
+    fails_with(
+        shroud(&["smooth", s(&origin), "--domain", "sphere"]),
+        "no direction",
+    );
 }

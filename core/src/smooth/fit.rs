@@ -337,6 +337,34 @@ impl SmoothSurface {
         domain: &crate::mesh::QuadMesh,
         n: usize,
     ) -> Result<crate::mesh::QuadMesh, crate::mesh::MeshError> {
+        self.tessellate(domain, n, |mut p, value| {
+            p[2] = value;
+            p
+        })
+    }
+
+    /// A radial surface (`dim` 1 over a closed mesh around the origin, such as
+    /// the cube-sphere) as a quad mesh: the fitted value is the distance from
+    /// the origin along the domain point's direction.
+    pub fn tessellate_radial(
+        &self,
+        domain: &crate::mesh::QuadMesh,
+        n: usize,
+    ) -> Result<crate::mesh::QuadMesh, crate::mesh::MeshError> {
+        self.tessellate(domain, n, |p, value| {
+            let norm = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2])
+                .sqrt()
+                .max(f64::MIN_POSITIVE);
+            p.map(|x| x / norm * value)
+        })
+    }
+
+    fn tessellate(
+        &self,
+        domain: &crate::mesh::QuadMesh,
+        n: usize,
+        place: impl Fn([f64; 3], f64) -> [f64; 3],
+    ) -> Result<crate::mesh::QuadMesh, crate::mesh::MeshError> {
         let n = n.max(1);
         let v = domain.vertices();
         let mut vertices = Vec::new();
@@ -349,11 +377,11 @@ impl SmoothSurface {
                     let weights = [(1.0 - u) * (1.0 - w), u * (1.0 - w), u * w, (1.0 - u) * w];
                     let mut p = [0.0; 3];
                     for (k, &corner) in quad.iter().enumerate() {
-                        p[0] += weights[k] * v[corner as usize][0];
-                        p[1] += weights[k] * v[corner as usize][1];
+                        for (c, x) in p.iter_mut().enumerate() {
+                            *x += weights[k] * v[corner as usize][c];
+                        }
                     }
-                    p[2] = self.evaluate(f, u, w)[0];
-                    vertices.push(p);
+                    vertices.push(place(p, self.evaluate(f, u, w)[0]));
                 }
             }
             let at = |a: usize, b: usize| base + (b * (n + 1) + a) as u32;

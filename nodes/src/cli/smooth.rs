@@ -9,8 +9,8 @@
 
 use crate::files;
 use anyhow::{bail, Context, Result};
-use shroud_core::mesh::{parse_obj, write_obj, G1Basis, G1Domain, MeshError};
-use shroud_core::smooth::{PlanarLocator, SmoothFitter};
+use shroud_core::mesh::{parse_obj, write_obj, G1Basis, G1Domain, MeshError, QuadMesh};
+use shroud_core::smooth::{cube_sphere, PlanarLocator, SmoothFitter, SphereLocator};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -18,9 +18,15 @@ use std::time::Instant;
 pub struct SmoothArgs {
     /// The cloud to fit (.ply, .xyz, .csv): a graph z(x, y) over the domain.
     pub input: Option<PathBuf>,
-    /// The domain: a quad mesh as OBJ (every face a quad, manifold; in z = 0 to fit).
+    /// The domain: a quad mesh as OBJ (every face a quad, manifold; in z = 0
+    /// to fit a graph z(x, y)).
+    #[arg(long, required_unless_present = "domain", conflicts_with = "domain")]
+    pub mesh: Option<PathBuf>,
+    /// Or a built-in domain: `sphere` or `sphere:LEVELS`, the cube-sphere
+    /// refined LEVELS times (default 2: the paper's 96 faces), to fit a radial
+    /// function r(direction) of points around the origin.
     #[arg(long)]
-    pub mesh: PathBuf,
+    pub domain: Option<String>,
     /// Print the mesh's classification and the dimension of its G1 space.
     #[arg(long)]
     pub info: bool,
@@ -35,26 +41,53 @@ pub struct SmoothArgs {
     pub tessellation: usize,
 }
 
+/// Which kind of domain the points are fitted over.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum DomainKind {
+    Planar,
+    Sphere,
+}
+
 pub fn run(args: &SmoothArgs) -> Result<()> {
-    let bytes = std::fs::read(&args.mesh)
-        .with_context(|| format!("cannot read {}", args.mesh.display()))?;
-    let mesh = parse_obj(&bytes).with_context(|| format!("{}", args.mesh.display()))?;
-    let domain = G1Domain::new(mesh)
-        .with_context(|| format!("{}: cannot refine the mesh", args.mesh.display()))?;
+    let (mesh, kind, name) = domain_mesh(args)?;
+    let domain = G1Domain::new(mesh).with_context(|| format!("{name}: cannot refine the mesh"))?;
     if domain.refined {
         println!(
-            "note: {} has adjacent extraordinary vertices; refined once (Catmull-Clark) so that they are isolated",
-            args.mesh.display()
+            "note: {name} has adjacent extraordinary vertices; refined once (Catmull-Clark) so that they are isolated"
         );
     }
     if args.info {
         info(&domain)?;
     }
     match &args.input {
-        Some(input) => fit(args, input, domain),
+        Some(input) => fit(args, input, domain, kind),
         None if args.info => Ok(()),
         None => bail!("give an input cloud to fit, or --info"),
     }
+}
+
+fn domain_mesh(args: &SmoothArgs) -> Result<(QuadMesh, DomainKind, String)> {
+    if let Some(path) = &args.mesh {
+        let bytes =
+            std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+        let mesh = parse_obj(&bytes).with_context(|| format!("{}", path.display()))?;
+        return Ok((mesh, DomainKind::Planar, path.display().to_string()));
+    }
+    let text = args.domain.as_deref().unwrap_or_default();
+    let levels = match text.split_once(':') {
+        None if text == "sphere" => 2,
+        Some(("sphere", n)) => n
+            .parse::<usize>()
+            .ok()
+            .filter(|n| *n <= 5)
+            .with_context(|| format!("--domain {text}: LEVELS must be 0 to 5"))?,
+        _ => bail!("--domain {text:?}: expected sphere or sphere:LEVELS"),
+    };
+    Ok((
+        cube_sphere(levels)?,
+        DomainKind::Sphere,
+        format!("the cube-sphere ({levels} levels)"),
+    ))
 }
 
 fn info(domain: &G1Domain) -> Result<()> {
@@ -102,16 +135,36 @@ fn info(domain: &G1Domain) -> Result<()> {
     Ok(())
 }
 
-fn fit(args: &SmoothArgs, input: &std::path::Path, domain: G1Domain) -> Result<()> {
+fn fit(
+    args: &SmoothArgs,
+    input: &std::path::Path,
+    domain: G1Domain,
+    kind: DomainKind,
+) -> Result<()> {
     let start = Instant::now();
     let points = files::read_cloud(input)?;
-    let locator = PlanarLocator::new(&domain.mesh)
-        .with_context(|| format!("{}: the fitting domain must be planar", args.mesh.display()))?;
-    let xy: Vec<[f64; 2]> = points.iter().map(|p| [p[0] as f64, p[1] as f64]).collect();
-    let samples = locator
-        .locate_all(&xy)
-        .with_context(|| format!("{} over {}", input.display(), args.mesh.display()))?;
-    let values: Vec<f64> = points.iter().map(|p| p[2] as f64).collect();
+    let xyz: Vec<[f64; 3]> = points.iter().map(|p| p.map(f64::from)).collect();
+    let (samples, values) = match kind {
+        DomainKind::Planar => {
+            let locator = PlanarLocator::new(&domain.mesh)
+                .context("the fitting domain must be planar (z = 0)")?;
+            let xy: Vec<[f64; 2]> = xyz.iter().map(|p| [p[0], p[1]]).collect();
+            let samples = locator
+                .locate_all(&xy)
+                .with_context(|| format!("{} over the domain", input.display()))?;
+            (samples, xyz.iter().map(|p| p[2]).collect::<Vec<f64>>())
+        }
+        DomainKind::Sphere => {
+            let samples = SphereLocator::new(&domain.mesh)
+                .locate_all(&xyz)
+                .with_context(|| format!("{} around the origin", input.display()))?;
+            let radii = xyz
+                .iter()
+                .map(|p| (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt())
+                .collect::<Vec<f64>>();
+            (samples, radii)
+        }
+    };
     let mesh = domain.mesh.clone();
     let fitter = SmoothFitter::new(domain).context("cannot build the G1 basis")?;
     let surface = fitter
@@ -138,12 +191,16 @@ fn fit(args: &SmoothArgs, input: &std::path::Path, domain: G1Domain) -> Result<(
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     let bytes = match ext.as_deref() {
-        Some("obj") => write_obj(&surface.tessellate_graph(&mesh, args.tessellation)?),
+        Some("obj") => write_obj(&match kind {
+            DomainKind::Planar => surface.tessellate_graph(&mesh, args.tessellation)?,
+            DomainKind::Sphere => surface.tessellate_radial(&mesh, args.tessellation)?,
+        }),
         Some("json") => serde_json::to_vec(&serde_json::json!({
             "format": "shroud-g1-patches",
             "version": 1,
             "degree": 5,
             "dim": surface.dim,
+            "kind": match kind { DomainKind::Planar => "graph", DomainKind::Sphere => "radial" },
             "domain": { "vertices": mesh.vertices(), "faces": mesh.faces() },
             "patches": surface.coefficients.chunks(36 * surface.dim).collect::<Vec<_>>(),
             "errors": { "min": e.min, "max": e.max, "rmse": e.rmse },
