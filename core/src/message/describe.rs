@@ -3,7 +3,7 @@
 
 use super::{
     BlendCommandMessage, CloudMessage, CollisionMessage, JointStateMessage, MessageError,
-    NodeStatusMessage, SurrogateMessage, TopicKind,
+    NodeStatusMessage, SmoothPatchesMessage, SurrogateMessage, TopicKind,
 };
 use serde_json::{json, Value};
 
@@ -17,6 +17,7 @@ pub fn describe(kind: TopicKind, bytes: &[u8]) -> Result<Value, MessageError> {
         TopicKind::Status => to_value(&NodeStatusMessage::from_bytes(bytes)?)?,
         TopicKind::Alive => json!({ "alive": true }),
         TopicKind::Blend => to_value(&BlendCommandMessage::from_bytes(bytes)?)?,
+        TopicKind::Smooth => describe_smooth(&SmoothPatchesMessage::from_bytes(bytes)?),
     };
     Ok(value)
 }
@@ -50,6 +51,23 @@ fn describe_cloud(msg: &CloudMessage) -> Result<Value, MessageError> {
         "bounds": bounds,
         "intensity": msg.intensity.is_some(),
     }))
+}
+
+fn describe_smooth(msg: &SmoothPatchesMessage) -> Value {
+    json!({
+        "version": msg.version,
+        "source_stamp_ns": msg.source_stamp_ns,
+        "source_sequence": msg.source_sequence,
+        "source": msg.source,
+        "kind": msg.kind,
+        "faces": msg.quads.len() / 16,
+        "functions": msg.functions,
+        "lambda": msg.lambda,
+        "points": msg.points,
+        "outside": msg.outside,
+        "errors": { "min": msg.error_min, "max": msg.error_max, "rmse": msg.error_rmse },
+        "fit_ns": msg.fit_ns,
+    })
 }
 
 fn describe_surrogate(msg: &SurrogateMessage) -> Value {

@@ -10,6 +10,7 @@
 //! | collision status | `shroud/<ns>/collision/<arm>` | [`super::CollisionMessage`] |
 //! | node status | `shroud/<ns>/status/<node>` | [`super::NodeStatusMessage`] |
 //! | blend commands | `shroud/<ns>/blend/<blender>` | [`super::BlendCommandMessage`] |
+//! | smooth patches | `shroud/<ns>/smooth/<stream>` | [`super::SmoothPatchesMessage`] |
 //! | node presence | `shroud/<ns>/alive/<node>` | liveliness token |
 
 use super::error::MessageError;
@@ -28,10 +29,11 @@ pub enum TopicKind {
     Status,
     Alive,
     Blend,
+    Smooth,
 }
 
 impl TopicKind {
-    pub const ALL: [TopicKind; 7] = [
+    pub const ALL: [TopicKind; 8] = [
         Self::Cloud,
         Self::Surrogate,
         Self::Joints,
@@ -39,6 +41,7 @@ impl TopicKind {
         Self::Status,
         Self::Alive,
         Self::Blend,
+        Self::Smooth,
     ];
 
     pub fn as_str(self) -> &'static str {
@@ -50,6 +53,7 @@ impl TopicKind {
             Self::Status => "status",
             Self::Alive => "alive",
             Self::Blend => "blend",
+            Self::Smooth => "smooth",
         }
     }
 

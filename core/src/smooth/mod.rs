@@ -12,6 +12,7 @@ mod bernstein;
 mod error;
 mod fit;
 mod locate;
+mod parametrisation;
 mod sphere;
 mod thin_plate;
 
@@ -22,5 +23,6 @@ pub use bernstein::{bernstein5, bernstein5_derivative};
 pub use error::SmoothError;
 pub use fit::{FitErrors, Sample, SmoothFitter, SmoothSurface};
 pub use locate::PlanarLocator;
+pub use parametrisation::Parametrisation;
 pub use sphere::{cube_sphere, SphereLocator};
 pub use thin_plate::thin_plate_gram;

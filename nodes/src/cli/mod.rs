@@ -10,6 +10,7 @@ mod smooth;
 
 pub use blend::{points3, BlendShapeArgs};
 pub use fit::{certificate_line, SurrogateShapeArgs};
+pub use smooth::SmoothDomainArgs;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};

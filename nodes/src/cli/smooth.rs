@@ -10,7 +10,7 @@
 use crate::files;
 use anyhow::{bail, Context, Result};
 use shroud_core::mesh::{parse_obj, write_obj, G1Basis, G1Domain, MeshError, QuadMesh};
-use shroud_core::smooth::{cube_sphere, PlanarLocator, SmoothFitter, SphereLocator};
+use shroud_core::smooth::{cube_sphere, Parametrisation, SmoothFitter};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -18,15 +18,8 @@ use std::time::Instant;
 pub struct SmoothArgs {
     /// The cloud to fit (.ply, .xyz, .csv): a graph z(x, y) over the domain.
     pub input: Option<PathBuf>,
-    /// The domain: a quad mesh as OBJ (every face a quad, manifold; in z = 0
-    /// to fit a graph z(x, y)).
-    #[arg(long, required_unless_present = "domain", conflicts_with = "domain")]
-    pub mesh: Option<PathBuf>,
-    /// Or a built-in domain: `sphere` or `sphere:LEVELS`, the cube-sphere
-    /// refined LEVELS times (default 2: the paper's 96 faces), to fit a radial
-    /// function r(direction) of points around the origin.
-    #[arg(long)]
-    pub domain: Option<String>,
+    #[command(flatten)]
+    pub domain: SmoothDomainArgs,
     /// Print the mesh's classification and the dimension of its G1 space.
     #[arg(long)]
     pub info: bool,
@@ -41,32 +34,69 @@ pub struct SmoothArgs {
     pub tessellation: usize,
 }
 
+/// The fitting domain, shared by `shroud smooth` and the `smooth` node.
+#[derive(clap::Args, Debug, Clone)]
+pub struct SmoothDomainArgs {
+    /// The domain: a quad mesh as OBJ (every face a quad, manifold; in z = 0
+    /// to fit a graph z(x, y)).
+    #[arg(long, required_unless_present = "domain", conflicts_with = "domain")]
+    pub mesh: Option<PathBuf>,
+    /// Or a built-in domain: `sphere` or `sphere:LEVELS`, the cube-sphere
+    /// refined LEVELS times (default 2: the paper's 96 faces), to fit a radial
+    /// function r(direction) of points around the origin.
+    #[arg(long)]
+    pub domain: Option<String>,
+}
+
+impl SmoothDomainArgs {
+    /// The domain (refined once if its EVs touch, and said so) and the name to
+    /// use in messages.
+    pub fn domain(&self) -> Result<(G1Domain, DomainKind, String)> {
+        let (mesh, kind, name) = domain_mesh(self)?;
+        let domain =
+            G1Domain::new(mesh).with_context(|| format!("{name}: cannot refine the mesh"))?;
+        if domain.refined {
+            println!(
+                "note: {name} has adjacent extraordinary vertices; refined once (Catmull-Clark) so that they are isolated"
+            );
+        }
+        Ok((domain, kind, name))
+    }
+
+    /// The domain and how points become samples over it.
+    pub fn load(&self) -> Result<(G1Domain, Parametrisation)> {
+        let (domain, kind, name) = self.domain()?;
+        let parametrisation = match kind {
+            DomainKind::Planar => Parametrisation::graph(&domain.mesh).with_context(|| {
+                format!("{name}: a fitting domain from a file must be planar (z = 0)")
+            })?,
+            DomainKind::Sphere => Parametrisation::radial(&domain.mesh),
+        };
+        Ok((domain, parametrisation))
+    }
+}
+
 /// Which kind of domain the points are fitted over.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum DomainKind {
+pub enum DomainKind {
     Planar,
     Sphere,
 }
 
 pub fn run(args: &SmoothArgs) -> Result<()> {
-    let (mesh, kind, name) = domain_mesh(args)?;
-    let domain = G1Domain::new(mesh).with_context(|| format!("{name}: cannot refine the mesh"))?;
-    if domain.refined {
-        println!(
-            "note: {name} has adjacent extraordinary vertices; refined once (Catmull-Clark) so that they are isolated"
-        );
+    if args.input.is_none() && !args.info {
+        bail!("give an input cloud to fit, or --info");
     }
     if args.info {
-        info(&domain)?;
+        info(&args.domain.domain()?.0)?;
     }
     match &args.input {
-        Some(input) => fit(args, input, domain, kind),
-        None if args.info => Ok(()),
-        None => bail!("give an input cloud to fit, or --info"),
+        Some(input) => fit(args, input),
+        None => Ok(()),
     }
 }
 
-fn domain_mesh(args: &SmoothArgs) -> Result<(QuadMesh, DomainKind, String)> {
+fn domain_mesh(args: &SmoothDomainArgs) -> Result<(QuadMesh, DomainKind, String)> {
     if let Some(path) = &args.mesh {
         let bytes =
             std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
@@ -135,36 +165,14 @@ fn info(domain: &G1Domain) -> Result<()> {
     Ok(())
 }
 
-fn fit(
-    args: &SmoothArgs,
-    input: &std::path::Path,
-    domain: G1Domain,
-    kind: DomainKind,
-) -> Result<()> {
+fn fit(args: &SmoothArgs, input: &std::path::Path) -> Result<()> {
     let start = Instant::now();
+    let (domain, parametrisation) = args.domain.load()?;
     let points = files::read_cloud(input)?;
     let xyz: Vec<[f64; 3]> = points.iter().map(|p| p.map(f64::from)).collect();
-    let (samples, values) = match kind {
-        DomainKind::Planar => {
-            let locator = PlanarLocator::new(&domain.mesh)
-                .context("the fitting domain must be planar (z = 0)")?;
-            let xy: Vec<[f64; 2]> = xyz.iter().map(|p| [p[0], p[1]]).collect();
-            let samples = locator
-                .locate_all(&xy)
-                .with_context(|| format!("{} over the domain", input.display()))?;
-            (samples, xyz.iter().map(|p| p[2]).collect::<Vec<f64>>())
-        }
-        DomainKind::Sphere => {
-            let samples = SphereLocator::new(&domain.mesh)
-                .locate_all(&xyz)
-                .with_context(|| format!("{} around the origin", input.display()))?;
-            let radii = xyz
-                .iter()
-                .map(|p| (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt())
-                .collect::<Vec<f64>>();
-            (samples, radii)
-        }
-    };
+    let (samples, values) = parametrisation
+        .sample_all(&xyz)
+        .with_context(|| format!("{} over the domain", input.display()))?;
     let mesh = domain.mesh.clone();
     let fitter = SmoothFitter::new(domain).context("cannot build the G1 basis")?;
     let surface = fitter
@@ -191,16 +199,16 @@ fn fit(
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     let bytes = match ext.as_deref() {
-        Some("obj") => write_obj(&match kind {
-            DomainKind::Planar => surface.tessellate_graph(&mesh, args.tessellation)?,
-            DomainKind::Sphere => surface.tessellate_radial(&mesh, args.tessellation)?,
+        Some("obj") => write_obj(&match parametrisation {
+            Parametrisation::Graph(_) => surface.tessellate_graph(&mesh, args.tessellation)?,
+            Parametrisation::Radial(_) => surface.tessellate_radial(&mesh, args.tessellation)?,
         }),
         Some("json") => serde_json::to_vec(&serde_json::json!({
             "format": "shroud-g1-patches",
             "version": 1,
             "degree": 5,
             "dim": surface.dim,
-            "kind": match kind { DomainKind::Planar => "graph", DomainKind::Sphere => "radial" },
+            "kind": parametrisation.kind(),
             "domain": { "vertices": mesh.vertices(), "faces": mesh.faces() },
             "patches": surface.coefficients.chunks(36 * surface.dim).collect::<Vec<_>>(),
             "errors": { "min": e.min, "max": e.max, "rmse": e.rmse },

@@ -18,7 +18,6 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use zenoh::bytes::ZBytes;
-use zenoh::qos::CongestionControl;
 use zenoh::Wait;
 
 #[derive(Debug, Clone, Args)]
@@ -94,22 +93,9 @@ fn serve(ctx: Arc<NodeContext>, args: BlendNodeArgs, params: BlendParams) -> Res
     // Every command counts (a commit must not be lost), so the queue is deep;
     // the worker skips the drops a later drop supersedes instead.
     let mailbox = Arc::new(Mailbox::new(1024));
-    let inbox = mailbox.clone();
-    let _subscriber = ctx
-        .session
-        .declare_subscriber(&commands)
-        .callback(move |sample| {
-            inbox.push((sample.key_expr().to_string(), sample.payload().clone()));
-        })
-        .wait()
-        .map_err(|e| anyhow::anyhow!("subscribe {commands}: {e}"))?;
+    let _subscriber = ctx.subscribe_into(&commands, &mailbox)?;
     // The model is large and each one supersedes the last: drop, like a sensor.
-    let publisher = ctx
-        .session
-        .declare_publisher(&output)
-        .congestion_control(CongestionControl::Drop)
-        .wait()
-        .map_err(|e| anyhow::anyhow!("publisher {output}: {e}"))?;
+    let publisher = ctx.latest_publisher(&output)?;
     let writer = PayloadWriter::new(true, 64 << 20);
     let mut out = Output {
         ctx: &ctx,

@@ -11,6 +11,7 @@ mod metrics;
 mod runtime;
 mod scanner;
 mod sensor;
+mod smooth;
 
 pub use arm::ArmArgs;
 pub use blend::BlendNodeArgs;
@@ -21,6 +22,7 @@ pub use metrics::NodeMetrics;
 pub use runtime::{run_node, NodeCommon, NodeContext};
 pub use scanner::ScannerArgs;
 pub use sensor::{CanNodeArgs, SerialNodeArgs};
+pub use smooth::SmoothNodeArgs;
 
 use anyhow::Result;
 use clap::Subcommand;
@@ -41,6 +43,8 @@ pub enum NodeCommand {
     Can(CanNodeArgs),
     /// Blend a child part onto a parent cloud, following drop/adjust commands (paper 001).
     Blend(BlendNodeArgs),
+    /// Fit G1 smooth spline patches to a cloud stream over a domain (paper 004).
+    Smooth(SmoothNodeArgs),
     /// List the nodes alive in a namespace with their status.
     List(NodeListArgs),
 }
@@ -54,6 +58,7 @@ pub fn run(command: NodeCommand) -> Result<()> {
         NodeCommand::Serial(args) => sensor::run_serial(args),
         NodeCommand::Can(args) => sensor::run_can(args),
         NodeCommand::Blend(args) => blend::run(args),
+        NodeCommand::Smooth(args) => smooth::run(args),
         NodeCommand::List(args) => list::run(args),
     }
 }

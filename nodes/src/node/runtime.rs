@@ -2,13 +2,14 @@
 //! announces it, the status publisher, and a clean stop on SIGINT/SIGTERM.
 
 use super::metrics::NodeMetrics;
-use crate::transport::{shutdown_signal, unix_ns, ZenohArgs};
+use crate::transport::{shutdown_signal, unix_ns, Mailbox, ZenohArgs};
 use anyhow::{Context, Result};
 use clap::Args;
 use shroud_core::message::{check_name, NodeStatusMessage, TopicKind, Topics};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
+use zenoh::bytes::ZBytes;
 use zenoh::Wait;
 
 /// Options every node takes.
@@ -46,6 +47,33 @@ impl NodeContext {
 
     pub fn key(&self, kind: TopicKind, name: &str) -> Result<String> {
         Ok(self.topics.key(kind, name)?)
+    }
+
+    /// Subscribes to `key`, handing every sample's key and payload to
+    /// `mailbox` (the worker thread decodes them, not zenoh's).
+    pub fn subscribe_into(
+        &self,
+        key: &str,
+        mailbox: &Arc<Mailbox<(String, ZBytes)>>,
+    ) -> Result<zenoh::pubsub::Subscriber<()>> {
+        let inbox = mailbox.clone();
+        self.session
+            .declare_subscriber(key.to_owned())
+            .callback(move |sample| {
+                inbox.push((sample.key_expr().to_string(), sample.payload().clone()));
+            })
+            .wait()
+            .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))
+    }
+
+    /// A publisher for messages that each supersede the last: a slow reader
+    /// loses old ones rather than stalling the node (congestion control drop).
+    pub fn latest_publisher(&self, key: &str) -> Result<zenoh::pubsub::Publisher<'static>> {
+        self.session
+            .declare_publisher(key.to_owned())
+            .congestion_control(zenoh::qos::CongestionControl::Drop)
+            .wait()
+            .map_err(|e| anyhow::anyhow!("publisher {key}: {e}"))
     }
 
     /// A message that could not be used: logged with its key and counted.

@@ -1,0 +1,137 @@
+//! The `smooth` node: the accurate counterpart of the safe surrogate (paper
+//! 004). It fits every incoming cloud by G1 smooth spline functions over a
+//! configured domain (a planar quad mesh for graphs, the cube-sphere for
+//! radial functions) and publishes the patches with their error measures.
+//! Points outside the domain are skipped and counted.
+
+use super::runtime::{run_node, NodeCommon, NodeContext};
+use crate::cli::SmoothDomainArgs;
+use crate::transport::{unix_ns, Mailbox};
+use anyhow::Result;
+use clap::Args;
+use shroud_core::message::{CloudView, SmoothFitReport, SmoothPatchesMessage, TopicKind};
+use shroud_core::smooth::{Parametrisation, SmoothFitter};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use zenoh::bytes::ZBytes;
+use zenoh::Wait;
+
+#[derive(Debug, Clone, Args)]
+pub struct SmoothNodeArgs {
+    #[command(flatten)]
+    pub common: NodeCommon,
+    /// Cloud stream to fit (`shroud/<ns>/cloud/<input>`).
+    #[arg(long, default_value = "sim")]
+    pub input: String,
+    /// Patch stream (`shroud/<ns>/smooth/<output>`); default: the input's name.
+    #[arg(long)]
+    pub output: Option<String>,
+    #[command(flatten)]
+    pub domain: SmoothDomainArgs,
+    /// Thin-plate smoothing weight lambda of eq. (26).
+    #[arg(long, default_value_t = 1e-6)]
+    pub lambda: f64,
+}
+
+pub fn run(args: SmoothNodeArgs) -> Result<()> {
+    anyhow::ensure!(
+        args.lambda.is_finite() && args.lambda >= 0.0,
+        "--lambda must be finite and >= 0"
+    );
+    let (domain, parametrisation) = args.domain.load()?;
+    let fitter = SmoothFitter::new(domain)?;
+    let common = args.common.clone();
+    run_node(&common, "smooth", move |ctx| {
+        serve(ctx, args, fitter, parametrisation)
+    })
+}
+
+fn serve(
+    ctx: Arc<NodeContext>,
+    args: SmoothNodeArgs,
+    fitter: SmoothFitter,
+    parametrisation: Parametrisation,
+) -> Result<()> {
+    let input = ctx.key(TopicKind::Cloud, &args.input)?;
+    let output = ctx.key(
+        TopicKind::Smooth,
+        args.output.as_deref().unwrap_or(&args.input),
+    )?;
+    let mailbox = Arc::new(Mailbox::new(1));
+    let _subscriber = ctx.subscribe_into(&input, &mailbox)?;
+    let publisher = ctx.latest_publisher(&output)?;
+    tracing::info!(%input, %output, functions = fitter.basis.len(), kind = parametrisation.kind(), "fitting");
+    ctx.metrics.set("functions", fitter.basis.len() as f64);
+    while !ctx.stopping() {
+        ctx.metrics
+            .set_counter("dropped_backlog", mailbox.dropped());
+        let Some((key, payload)) = mailbox.pop(Duration::from_millis(100)) else {
+            continue;
+        };
+        ctx.metrics.add("received", 1);
+        match fit_one(&ctx, &args, &fitter, &parametrisation, &payload) {
+            Ok(Some(bytes)) => match publisher.put(bytes).wait() {
+                Ok(()) => ctx.metrics.add("published", 1),
+                Err(e) => {
+                    ctx.metrics.add("publish_errors", 1);
+                    tracing::warn!("publish {output}: {e}");
+                }
+            },
+            Ok(None) => {}
+            Err(e) => ctx.drop_malformed(&key, &e),
+        }
+    }
+    mailbox.close();
+    Ok(())
+}
+
+/// Decodes, fits and encodes one cloud. A malformed message is an error (the
+/// caller counts it); a cloud that cannot be fitted is logged and counted
+/// here, and gives `None`.
+fn fit_one(
+    ctx: &NodeContext,
+    args: &SmoothNodeArgs,
+    fitter: &SmoothFitter,
+    parametrisation: &Parametrisation,
+    payload: &ZBytes,
+) -> Result<Option<Vec<u8>>, shroud_core::message::MessageError> {
+    let bytes = payload.to_bytes();
+    let msg = CloudView::from_bytes(&bytes)?;
+    let mut points = Vec::new();
+    msg.read_points(&mut points)?;
+    let start = Instant::now();
+    let xyz: Vec<[f64; 3]> = points.iter().map(|p| p.map(f64::from)).collect();
+    let (samples, values, outside) = parametrisation.sample_inside(&xyz);
+    ctx.metrics.add("points_outside", outside as u64);
+    let surface = match fitter.fit(&samples, &values, 1, args.lambda) {
+        Ok(surface) => surface,
+        Err(e) => {
+            ctx.metrics.add("fit_errors", 1);
+            tracing::warn!(sequence = msg.sequence, "cloud not fitted: {e}");
+            return Ok(None);
+        }
+    };
+    let errors = surface.errors(&samples, &values);
+    let fit_ns = start.elapsed().as_nanos() as u64;
+    ctx.metrics.set("fit_ms", fit_ns as f64 / 1e6);
+    ctx.metrics.set("rmse", errors.rmse);
+    ctx.metrics.set(
+        "latency_ms",
+        unix_ns().saturating_sub(msg.stamp_ns) as f64 / 1e6,
+    );
+    let report = SmoothFitReport {
+        source_stamp_ns: msg.stamp_ns,
+        source_sequence: msg.sequence,
+        source: &msg.source,
+        kind: parametrisation.kind(),
+        functions: fitter.basis.len(),
+        lambda: args.lambda,
+        points: samples.len(),
+        outside,
+        errors,
+        fit_ns,
+    };
+    SmoothPatchesMessage::new(&fitter.domain.mesh, &surface, &report)
+        .to_bytes()
+        .map(Some)
+}
