@@ -10,7 +10,7 @@ use super::slcan_source::SlcanSource;
 use super::socketcan_source::SocketCanSource;
 use super::{CanSource, ReaderError, ReaderStats, SourceError};
 use shroud_core::ingest::can::{CanScanDecoder, CanSensorConfig};
-use shroud_core::ingest::{ErrorKind, IngestError, Scan};
+use shroud_core::ingest::Scan;
 use std::path::PathBuf;
 use std::str::FromStr;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -44,22 +44,6 @@ pub fn run_can_reader(
     let mut reporter = ErrorReporter::new("can");
     let mut backoff = Backoff::new(config.backoff);
     let poll = Duration::from_millis(100);
-    let mut deliver = |results: Vec<Result<Scan, IngestError>>,
-                       decoder: &CanScanDecoder,
-                       stats: &mut ReaderStats| {
-        stats.decoder = *decoder.stats();
-        for result in results {
-            match result {
-                Ok(scan) => {
-                    stats.scans += 1;
-                    on_scan(scan, stats);
-                }
-                Err(e) if e.kind() == ErrorKind::UnknownId => tracing::trace!("{e}"),
-                Err(e) => reporter.error(&e),
-            }
-        }
-        reporter.summarise(&stats.decoder);
-    };
     let mut finished = false;
     while !finished && !stop.load(Ordering::Relaxed) {
         let mut source = match open() {
@@ -88,7 +72,7 @@ pub fn run_can_reader(
                     stats.frames_received += 1;
                     backoff.reset();
                     let results = decoder.push(&frame);
-                    deliver(results, &decoder, &mut stats);
+                    reporter.deliver(results, decoder.stats(), &mut stats, on_scan);
                 }
                 Ok(None) => {}
                 Err(error) => break Err(error),
@@ -100,7 +84,7 @@ pub fn run_can_reader(
         stats.transport.merge(&source.transport_stats());
         drop(source);
         let results = decoder.finish();
-        deliver(results, &decoder, &mut stats);
+        reporter.deliver(results, decoder.stats(), &mut stats, on_scan);
         match outcome {
             Ok(()) => break,
             Err(SourceError::Finished(_)) => {

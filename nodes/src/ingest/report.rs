@@ -1,7 +1,8 @@
 //! Logging of decode errors without flooding: each error at `debug`, and a
 //! `warn` summary of the counters at most once per interval while errors grow.
 
-use shroud_core::ingest::{DecoderStats, IngestError};
+use super::ReaderStats;
+use shroud_core::ingest::{DecoderStats, ErrorKind, IngestError, Scan};
 use std::time::{Duration, Instant};
 
 #[derive(Debug)]
@@ -22,9 +23,36 @@ impl ErrorReporter {
         }
     }
 
-    /// Logs one decode error.
+    /// Logs one decode error. Frames of other devices on a shared bus are
+    /// expected: only at `trace`.
     pub fn error(&mut self, error: &IngestError) {
-        tracing::debug!(source = %self.name, kind = error.kind().name(), "ingest error: {error}");
+        if error.kind() == ErrorKind::UnknownId {
+            tracing::trace!(source = %self.name, "{error}");
+        } else {
+            tracing::debug!(source = %self.name, kind = error.kind().name(), "ingest error: {error}");
+        }
+    }
+
+    /// Hands a decoder's complete scans to `on_scan` and logs its errors, with
+    /// the decoder's counters copied into `stats` first (every reader's loop).
+    pub fn deliver(
+        &mut self,
+        results: Vec<Result<Scan, IngestError>>,
+        decoder: &DecoderStats,
+        stats: &mut ReaderStats,
+        on_scan: &mut dyn FnMut(Scan, &ReaderStats),
+    ) {
+        stats.decoder = *decoder;
+        for result in results {
+            match result {
+                Ok(scan) => {
+                    stats.scans += 1;
+                    on_scan(scan, stats);
+                }
+                Err(error) => self.error(&error),
+            }
+        }
+        self.summarise(&stats.decoder);
     }
 
     /// Warns with the counters if errors grew and the interval has passed.

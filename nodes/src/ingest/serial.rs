@@ -6,7 +6,7 @@ use super::backoff::{Backoff, BackoffConfig};
 use super::report::ErrorReporter;
 use super::{ReaderError, ReaderStats};
 use shroud_core::ingest::serial::{DecoderConfig, SerialScanDecoder};
-use shroud_core::ingest::{IngestError, Scan};
+use shroud_core::ingest::Scan;
 use std::io::{self, Read};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
@@ -60,21 +60,6 @@ pub fn run_serial_reader(
     let mut decoder = SerialScanDecoder::new(config.decoder);
     let mut reporter = ErrorReporter::new(&config.path);
     let mut backoff = Backoff::new(config.backoff);
-    let mut deliver = |results: Vec<Result<Scan, IngestError>>,
-                       decoder: &SerialScanDecoder,
-                       stats: &mut ReaderStats| {
-        stats.decoder = *decoder.stats();
-        for result in results {
-            match result {
-                Ok(scan) => {
-                    stats.scans += 1;
-                    on_scan(scan, stats);
-                }
-                Err(error) => reporter.error(&error),
-            }
-        }
-        reporter.summarise(&stats.decoder);
-    };
     let mut buf = vec![0u8; 8192];
     while !stop.load(Ordering::Relaxed) {
         let opened = serialport::new(&config.path, config.baud)
@@ -104,7 +89,7 @@ pub fn run_serial_reader(
                     stats.bytes_read += n as u64;
                     backoff.reset();
                     let results = decoder.push(&buf[..n]);
-                    deliver(results, &decoder, &mut stats);
+                    reporter.deliver(results, decoder.stats(), &mut stats, on_scan);
                 }
                 Err(e)
                     if matches!(
@@ -118,7 +103,7 @@ pub fn run_serial_reader(
         };
         drop(port);
         let results = decoder.finish();
-        deliver(results, &decoder, &mut stats);
+        reporter.deliver(results, decoder.stats(), &mut stats, on_scan);
         let Some(error) = reason else { break };
         stats.disconnects += 1;
         tracing::warn!(path = %config.path, disconnects = stats.disconnects,
