@@ -113,13 +113,17 @@ impl SmoothFitter {
         for (k, function) in basis.functions.iter().enumerate() {
             for &(index, value) in function {
                 let (face, local) = (index / PATCH_COEFFICIENTS, index % PATCH_COEFFICIENTS);
+                // A vertex function's coefficients alternate between its
+                // faces: one entry per (function, face), found or added.
                 let list = &mut per_face[face];
-                if list.last().is_none_or(|(last, _)| *last != k) {
-                    list.push((k, [0.0; PATCH_COEFFICIENTS]));
-                }
-                if let Some((_, c)) = list.last_mut() {
-                    c[local] = value;
-                }
+                let slot = match list.iter().position(|(kk, _)| *kk == k) {
+                    Some(slot) => slot,
+                    None => {
+                        list.push((k, [0.0; PATCH_COEFFICIENTS]));
+                        list.len() - 1
+                    }
+                };
+                list[slot].1[local] = value;
             }
         }
         Ok(Self {
