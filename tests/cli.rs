@@ -32,11 +32,12 @@ fn ok(out: Output) -> String {
     stdout
 }
 
-/// The RMSE that `shroud smooth` prints.
+/// The (final) RMSE that `shroud smooth` prints.
 fn rmse_of(stdout: &str) -> f64 {
     stdout
-        .split("RMSE ")
-        .nth(1)
+        .lines()
+        .find(|l| l.starts_with("errors:"))
+        .and_then(|l| l.split("RMSE ").nth(1))
         .and_then(|r| r.trim().parse().ok())
         .unwrap_or_else(|| panic!("no RMSE in {stdout}"))
 }
@@ -281,8 +282,8 @@ fn smooth_info_prints_the_classification_and_the_g1_dimension() {
     let stdout = ok(shroud(&["smooth", "--mesh", s(&cube), "--info"]));
     assert!(stdout.contains("refined once"), "{stdout}");
     assert!(stdout.contains("faces: 24"), "{stdout}");
-    // An L of three quads has a boundary EV: the dimension is counted, the
-    // basis is not built yet, and the output says so.
+    // An L of three quads has a boundary EV (kappa = 3): its basis has the
+    // N + 2 = 6 vertex functions of Section 4.1.3.
     let l_shape = path(dir.path(), "l.obj");
     std::fs::write(
         &l_shape,
@@ -292,7 +293,8 @@ fn smooth_info_prints_the_classification_and_the_g1_dimension() {
     .unwrap();
     let stdout = ok(shroud(&["smooth", "--mesh", s(&l_shape), "--info"]));
     assert!(stdout.contains("dimension: 82"), "{stdout}");
-    assert!(stdout.contains("basis: not computed"), "{stdout}");
+    assert!(stdout.contains("basis: 82 functions"), "{stdout}");
+    assert!(stdout.contains("matches the dimension"), "{stdout}");
     // Bad meshes are named errors.
     let bad = path(dir.path(), "tri.obj");
     std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
@@ -418,5 +420,137 @@ fn smooth_fits_a_radial_function_over_the_sphere() {
     fails_with(
         shroud(&["smooth", s(&origin), "--domain", "sphere"]),
         "no direction",
+    );
+}
+
+/// Points on the sphere of radius `r` around `c`, by a Fibonacci lattice.
+fn sphere_xyz(n: usize, c: [f64; 3], r: f64) -> String {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let mut text = String::new();
+    for i in 0..n {
+        let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+        let s = (1.0 - z * z).sqrt();
+        let a = golden * i as f64;
+        let p = [s * a.cos(), s * a.sin(), z];
+        text += &format!(
+            "{} {} {}\n",
+            c[0] + r * p[0],
+            c[1] + r * p[1],
+            c[2] + r * p[2]
+        );
+    }
+    text
+}
+
+#[test]
+fn smooth_fits_a_parametric_surface_over_a_mesh_in_space() {
+    let dir = tempfile::tempdir().unwrap();
+    // A sphere (a closed surface, not a graph) over a coarse quad mesh of it:
+    // the inscribed cube, refined once since its EVs touch.
+    let cube = path(dir.path(), "cube.obj");
+    let a = 0.7 / 3f64.sqrt();
+    let corners: String = (0..8)
+        .map(|i| {
+            let c = |bit: usize| 0.5 + if i >> bit & 1 == 1 { a } else { -a };
+            format!("v {} {} {}\n", c(0), c(1), c(2))
+        })
+        .collect();
+    std::fs::write(
+        &cube,
+        corners + "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n",
+    )
+    .unwrap();
+    let cloud = path(dir.path(), "ball.xyz");
+    std::fs::write(&cloud, sphere_xyz(8000, [0.5, 0.5, 0.5], 0.7)).unwrap();
+    let out = path(dir.path(), "ball.ply");
+    let stdout = ok(shroud(&[
+        "smooth",
+        s(&cloud),
+        "--mesh",
+        s(&cube),
+        "-o",
+        s(&out),
+    ]));
+    assert!(stdout.contains("(parametric)"), "{stdout}");
+    assert!(stdout.contains("refined once"), "{stdout}");
+    let first: f64 = stdout
+        .lines()
+        .find(|l| l.starts_with("after 0 corrections"))
+        .and_then(|l| l.rsplit("RMSE").next())
+        .and_then(|x| x.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no first round in:\n{stdout}"));
+    assert!(stdout.contains("after 2 corrections"), "{stdout}");
+    let last = rmse_of(&stdout);
+    assert!(last < first / 10.0 && last < 5e-4, "{stdout}");
+    assert!(std::fs::read(&out).unwrap().starts_with(b"ply\n"));
+    // No corrections on request; a graph takes none.
+    let stdout = ok(shroud(&[
+        "smooth",
+        s(&cloud),
+        "--mesh",
+        s(&cube),
+        "--corrections",
+        "0",
+    ]));
+    assert!(!stdout.contains("after 0 corrections"), "{stdout}");
+    fails_with(
+        shroud(&[
+            "smooth",
+            s(&cloud),
+            "--domain",
+            "sphere:1",
+            "--corrections",
+            "2",
+        ]),
+        "parametric",
+    );
+    let bad = path(dir.path(), "nan.xyz");
+    std::fs::write(&bad, "0 0 0\nnan 1 1\n").unwrap();
+    fails_with(
+        shroud(&["smooth", s(&bad), "--mesh", s(&cube)]),
+        "non-finite coordinate",
+    );
+}
+
+#[test]
+fn smooth_fits_a_graph_over_a_rectangle_domain() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut text = String::new();
+    for i in 0..80 {
+        for j in 0..60 {
+            let (x, y) = (
+                -1.0 + 3.0 * (i as f64 + 0.5) / 80.0,
+                2.0 * (j as f64 + 0.5) / 60.0,
+            );
+            text += &format!("{x} {y} {}\n", (x * 1.3).sin() * y);
+        }
+    }
+    let cloud = path(dir.path(), "terrain.xyz");
+    std::fs::write(&cloud, &text).unwrap();
+    let stdout = ok(shroud(&[
+        "smooth",
+        s(&cloud),
+        "--domain",
+        "plane:-1,0,2,2,3",
+    ]));
+    // A 3 x 3 grid: the C1 biquintic space, (4 * 3 + 2)^2 functions.
+    assert!(
+        stdout.contains("with 196 G1 functions on 9 patches"),
+        "{stdout}"
+    );
+    assert!(rmse_of(&stdout) < 1e-3, "{stdout}");
+    let stdout = ok(shroud(&["smooth", "--domain", "plane:0,0,1,1", "--info"]));
+    assert!(stdout.contains("dimension: 324"), "{stdout}");
+    for bad in [
+        "plane:1,0,0,1",
+        "plane:0,0,1",
+        "plane:0,0,1,1,0",
+        "plane:a,b,c,d",
+    ] {
+        fails_with(shroud(&["smooth", s(&cloud), "--domain", bad]), bad);
+    }
+    fails_with(
+        shroud(&["smooth", s(&cloud), "--domain", "plane:0,0,1,1"]),
+        "outside the planar domain",
     );
 }

@@ -5,7 +5,7 @@
 mod common;
 
 use common::{assert_all_gone, free_port, hub, wiring, Proc};
-use shroud_core::message::{NodeStatusMessage, SmoothPatchesMessage};
+use shroud_core::message::{CloudMessage, NodeStatusMessage, SmoothPatchesMessage};
 use std::time::{Duration, Instant};
 use zenoh::Wait;
 
@@ -118,4 +118,59 @@ fn smooth_node_fits_the_terrain_and_survives_garbage() {
     assert!(scanner.wait_exit(LONG).success(), "{}", scanner.output());
     assert!(!node.output().contains("panicked"), "{}", node.output());
     assert_all_gone(&pids, Duration::from_secs(5));
+}
+
+/// A ball of radius 0.7 around (0.5, 0.5, 0.5), and the inscribed cube as
+/// its coarse quad mesh: a parametric fit with parameter correction.
+#[test]
+fn smooth_node_fits_a_closed_surface_in_space() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("cube.obj");
+    let a = 0.7 / 3f64.sqrt();
+    let mut obj: String = (0..8)
+        .map(|i| {
+            let c = |bit: usize| 0.5 + if i >> bit & 1 == 1 { a } else { -a };
+            format!("v {} {} {}\n", c(0), c(1), c(2))
+        })
+        .collect();
+    obj += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    std::fs::write(&mesh, obj).unwrap();
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+    let session = hub(&endpoint);
+    let ns = "e2e-smooth-ball";
+    let patches = session
+        .declare_subscriber(format!("shroud/{ns}/smooth/ball"))
+        .wait()
+        .unwrap();
+    let w = wiring(&endpoint, ns);
+    let args = [
+        "node", "smooth", "--input", "ball", "--lambda", "0", "--mesh",
+    ];
+    let mut node = Proc::start(&[&args[..], &[mesh.to_str().unwrap()], &w].concat());
+    let ball: Vec<[f32; 3]> = shroud_core::math::fibonacci_sphere(6000)
+        .iter()
+        .map(|d| (glam::DVec3::splat(0.5) + 0.7 * *d).as_vec3().to_array())
+        .collect();
+    let cloud = CloudMessage::new(1, 1, "test", Default::default(), &ball)
+        .to_bytes()
+        .unwrap();
+    let key = format!("shroud/{ns}/cloud/ball");
+    // The node may not be subscribed yet: publish until patches come back.
+    let deadline = Instant::now() + LONG;
+    let sample = loop {
+        assert!(Instant::now() < deadline, "no patches:\n{}", node.output());
+        session.put(&key, cloud.clone()).wait().unwrap();
+        if let Ok(Some(sample)) = patches.recv_timeout(Duration::from_secs(2)) {
+            break sample;
+        }
+    };
+    let msg = SmoothPatchesMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+    assert_eq!((msg.kind.as_str(), msg.dim), ("parametric", 3));
+    assert_eq!(msg.functions, 360, "the cube refined once");
+    assert_eq!(msg.points, 6000);
+    assert!(msg.error_rmse < 1e-3, "{}", msg.error_rmse);
+    let pid = node.pid();
+    node.signal(libc::SIGTERM);
+    assert!(node.wait_exit(LONG).success(), "{}", node.output());
+    assert_all_gone(&[pid], Duration::from_secs(5));
 }

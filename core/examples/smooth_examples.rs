@@ -130,14 +130,9 @@ fn example_3() {
         (0.0f64).max((tau * d[0]).sin() * (tau * d[1]).sin() * (tau * d[2]).sin()) + 1.0
     };
     let n = 540_000;
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    let directions: Vec<[f64; 3]> = (0..n)
-        .map(|i| {
-            let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-            let s = (1.0 - z * z).sqrt();
-            let a = golden * i as f64;
-            [s * a.cos(), s * a.sin(), z]
-        })
+    let directions: Vec<[f64; 3]> = shroud_core::math::fibonacci_sphere(n)
+        .iter()
+        .map(|d| d.to_array())
         .collect();
     let values: Vec<f64> = directions.iter().map(f).collect();
     let start = Instant::now();

@@ -14,15 +14,11 @@ use shroud_core::blend::{
 use shroud_core::cloud::{boundary_loops, to_dvec3, BoundaryParams, NeighbourIndex};
 
 fn fibonacci_sphere(n: usize, r: f64, centre: DVec3) -> (Vec<DVec3>, Vec<DVec3>) {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|i| {
-            let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-            let s = (1.0 - y * y).sqrt();
-            let t = golden * i as f64;
-            let n = DVec3::new(s * t.cos(), y, s * t.sin());
-            (centre + r * n, n)
-        })
+    shroud_core::math::fibonacci_sphere(n)
+        .into_iter()
+        // The lattice's first point at the +y pole.
+        .map(|d| DVec3::new(d.x, d.z, d.y))
+        .map(|d| (centre + r * d, d))
         .unzip()
 }
 

@@ -224,15 +224,10 @@ mod tests {
     use super::*;
 
     fn sphere(n: usize) -> Vec<DVec3> {
-        // Fibonacci sphere, radius 2 around (1, 0, 0).
-        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-        (0..n)
-            .map(|i| {
-                let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-                let r = (1.0 - y * y).sqrt();
-                let t = golden * i as f64;
-                DVec3::new(1.0, 0.0, 0.0) + 2.0 * DVec3::new(r * t.cos(), y, r * t.sin())
-            })
+        // Radius 2 around (1, 0, 0), the lattice's first point at the +y pole.
+        crate::math::fibonacci_sphere(n)
+            .into_iter()
+            .map(|d| DVec3::new(1.0, 0.0, 0.0) + 2.0 * DVec3::new(d.x, d.z, d.y))
             .collect()
     }
 

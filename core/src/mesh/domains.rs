@@ -4,6 +4,7 @@
 //! paper's 96-patch mesh) and the cube (refined twice, the 96-face sphere mesh
 //! before projection).
 
+use super::error::MeshError;
 use super::quad_mesh::QuadMesh;
 
 /// M_T: the triangle (0,0), (2,0), (1, sqrt 3) split at its centroid into
@@ -36,6 +37,35 @@ pub fn hexagon_mesh() -> QuadMesh {
     let faces = (0..6u32).map(|k| [12, 6 + (k + 5) % 6, k, 6 + k]).collect();
     QuadMesh::new(vertices, faces)
         .unwrap_or_else(|_| unreachable!("the hexagon is a valid quad mesh"))
+}
+
+/// The rectangle `lo`..`hi` in z = 0 split into `n` x `n` equal quads (a
+/// regular grid: no extraordinary vertex, the G1 space is the C1 one).
+pub fn rectangle_mesh(lo: [f64; 2], hi: [f64; 2], n: u32) -> Result<QuadMesh, MeshError> {
+    let n = n.max(1);
+    let m = n + 1;
+    let at = |i: u32, j: u32| {
+        let (s, t) = (i as f64 / n as f64, j as f64 / n as f64);
+        [
+            lo[0] + s * (hi[0] - lo[0]),
+            lo[1] + t * (hi[1] - lo[1]),
+            0.0,
+        ]
+    };
+    let vertices = (0..m * m).map(|k| at(k % m, k / m)).collect();
+    let index = |i: u32, j: u32| j * m + i;
+    let faces = (0..n * n)
+        .map(|k| {
+            let (i, j) = (k % n, k / n);
+            [
+                index(i, j),
+                index(i + 1, j),
+                index(i + 1, j + 1),
+                index(i, j + 1),
+            ]
+        })
+        .collect();
+    QuadMesh::new(vertices, faces)
 }
 
 /// The unit cube as six outward-facing quads.

@@ -39,22 +39,28 @@ pub fn g1_constraints(domain: &G1Domain) -> Result<Vec<Row>, MeshError> {
         } else {
             (a, b)
         };
-        let a0 = match c.vertices[p as usize] {
-            VertexKind::InnerExtraordinary => {
-                2.0 * (2.0 * std::f64::consts::PI / c.valences[p as usize] as f64).cos()
-            }
-            VertexKind::BoundaryExtraordinary => {
-                return Err(MeshError::Unsupported {
-                    what: "G1 constraints at a boundary extraordinary vertex",
-                })
-            }
-            _ => 0.0,
-        };
+        let a0 = gluing_a0(c.vertices[p as usize], c.valences[p as usize]);
         let side0 = CornerFrame::new(mesh.faces()[he.face(h)], he.face(h), p, q)?;
         let side1 = CornerFrame::new(mesh.faces()[he.face(o)], he.face(o), p, q)?;
         edge_rows(&side0, &side1, a0, &mut rows);
     }
     Ok(rows)
+}
+
+/// The coefficient `a0` of the gluing data (2) at an edge's first vertex.
+/// An inner EV of valence N splits the full turn 2 pi into N equal sector
+/// angles: `a0 = 2 cos(2 pi / N)`. A boundary EV with kappa = N - 1 patches
+/// splits the half turn pi into kappa sectors: `a0 = 2 cos(pi / kappa)`, the
+/// choice of the G1 ACC construction at the boundary, which gives the
+/// kappa + 3 vertex functions of Section 4.1.3 and vanishes, as the C1
+/// gluing does, at a regular boundary vertex (kappa = 2).
+pub fn gluing_a0(kind: VertexKind, valence: usize) -> f64 {
+    use std::f64::consts::PI;
+    match kind {
+        VertexKind::InnerExtraordinary => 2.0 * (2.0 * PI / valence as f64).cos(),
+        VertexKind::BoundaryExtraordinary => 2.0 * (PI / (valence - 1) as f64).cos(),
+        _ => 0.0,
+    }
 }
 
 /// The largest violation of `rows` by `x`, relative to the largest `|x|`.

@@ -475,6 +475,16 @@ fn a_boundary_ev_counts_its_valence_plus_two() {
     // four edges (kappa = 3 patches): N + 2 = 6 functions. Five corners and two
     // boundary regular vertices take 4 each; two extraordinary edges 2 each,
     // eight boundary edges 4 each, three faces 4 each: 34 + 36 + 12.
+    let domain = G1Domain::new(l_shape()).unwrap();
+    let c = &domain.classification;
+    assert_eq!((c.n_bev, c.n_c, c.n_brv, c.n_ee, c.n_be), (1, 5, 2, 2, 8));
+    let d = domain.dimension();
+    assert_eq!((d.vertex, d.edge, d.face), (34, 36, 12));
+    assert_eq!(d.total(), 82);
+}
+
+/// An L of three unit quads; the inner corner (1, 1) is a boundary EV.
+fn l_shape() -> QuadMesh {
     let vertices = vec![
         [0.0, 0.0, 0.0],
         [1.0, 0.0, 0.0],
@@ -486,13 +496,35 @@ fn a_boundary_ev_counts_its_valence_plus_two() {
         [1.0, 2.0, 0.0],
     ];
     let faces = vec![[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6]];
-    let mesh = QuadMesh::new(vertices, faces).unwrap();
-    let domain = G1Domain::new(mesh).unwrap();
-    let c = &domain.classification;
-    assert_eq!((c.n_bev, c.n_c, c.n_brv, c.n_ee, c.n_be), (1, 5, 2, 2, 8));
-    let d = domain.dimension();
-    assert_eq!((d.vertex, d.edge, d.face), (34, 36, 12));
-    assert_eq!(d.total(), 82);
+    QuadMesh::new(vertices, faces).unwrap()
+}
+
+/// A half disc split into `kappa` quads around the origin, a boundary EV
+/// with kappa patches (N = kappa + 1 edges).
+fn half_fan(kappa: usize) -> QuadMesh {
+    let step = std::f64::consts::PI / kappa as f64;
+    let at = |r: f64, a: f64| [r * a.cos(), r * a.sin(), 0.0];
+    // 0 centre, 1..=kappa+1 rim points, then kappa outer points between them.
+    let mut vertices = vec![[0.0; 3]];
+    vertices.extend((0..=kappa).map(|k| at(1.0, step * k as f64)));
+    vertices.extend((0..kappa).map(|k| at(1.3, step * (k as f64 + 0.5))));
+    let rim = |k: usize| 1 + k as u32;
+    let outer = |k: usize| (kappa + 2 + k) as u32;
+    let faces = (0..kappa)
+        .map(|k| [0, rim(k), outer(k), rim(k + 1)])
+        .collect();
+    QuadMesh::new(vertices, faces).unwrap()
+}
+
+#[test]
+fn boundary_evs_of_any_valence_classify_and_count() {
+    for kappa in 3..7 {
+        let domain = G1Domain::new(half_fan(kappa)).unwrap();
+        let c = &domain.classification;
+        assert_eq!(c.vertices[0], VertexKind::BoundaryExtraordinary);
+        assert_eq!(c.valences[0], kappa + 1);
+        assert_eq!((c.n_bev, c.n_ee), (1, kappa - 1), "kappa {kappa}");
+    }
 }
 
 /// The dimension of the null space of the G1 constraints (eq. 3), by SVD.
@@ -518,6 +550,10 @@ fn g1_constraints_have_the_null_space_of_corollary_1() {
         ("M_T refined", refined(m_t(), 1)),
         ("hexagon", hexagon()),
         ("grid 3x3", QuadMesh::new(v, f).unwrap()),
+        ("L (boundary EV, kappa 3)", l_shape()),
+        ("L refined", refined(l_shape(), 1)),
+        ("half fan kappa 4", half_fan(4)),
+        ("half fan kappa 5 refined", refined(half_fan(5), 1)),
         ("cube refined", refined(cube(), 1)),
     ];
     for (name, mesh) in meshes {
@@ -538,6 +574,10 @@ fn g1_basis_is_local_independent_and_g1_with_the_dimension_of_corollary_1() {
         ("M_T refined", refined(m_t(), 1)),
         ("hexagon", hexagon()),
         ("grid 2x2", QuadMesh::new(v, f).unwrap()),
+        ("L (boundary EV, kappa 3)", l_shape()),
+        ("L refined", refined(l_shape(), 1)),
+        ("half fan kappa 4", half_fan(4)),
+        ("half fan kappa 5 refined", refined(half_fan(5), 1)),
         ("cube refined", refined(cube(), 1)),
     ];
     for (name, mesh) in meshes {

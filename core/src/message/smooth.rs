@@ -9,8 +9,8 @@ use crate::smooth::{FitErrors, SmoothSurface};
 use serde::{Deserialize, Serialize};
 
 /// Patches on the wire. `kind` is `graph` (value = z over the planar domain
-/// point) or `radial` (value = distance from the origin along the domain
-/// point's direction).
+/// point), `radial` (value = distance from the origin along the domain
+/// point's direction) or `parametric` (value = the surface point, dim 3).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SmoothPatchesMessage {
     pub version: u16,
@@ -92,10 +92,20 @@ impl SmoothPatchesMessage {
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, MessageError> {
         let msg: Self = decode(bytes)?;
         check_version(msg.version)?;
-        if !matches!(msg.kind.as_str(), "graph" | "radial") {
+        let dim = match msg.kind.as_str() {
+            "graph" | "radial" => 1,
+            "parametric" => 3,
+            other => {
+                return Err(MessageError::Invalid {
+                    field: "kind",
+                    reason: format!("{other:?} is not graph, radial or parametric"),
+                })
+            }
+        };
+        if msg.dim != dim {
             return Err(MessageError::Invalid {
-                field: "kind",
-                reason: format!("{:?} is not graph or radial", msg.kind),
+                field: "dim",
+                reason: format!("{} for a {} fit, which has {dim}", msg.dim, msg.kind),
             });
         }
         let vertices = bytes_to_f64s(&msg.vertices, "vertices")?;
@@ -178,6 +188,10 @@ mod tests {
         assert!(SmoothPatchesMessage::from_bytes(&bad.to_bytes().unwrap()).is_err());
         let mut bad = msg.clone();
         bad.kind = "torus".into();
+        assert!(SmoothPatchesMessage::from_bytes(&bad.to_bytes().unwrap()).is_err());
+        // A parametric fit has three values per coefficient, not one.
+        let mut bad = msg.clone();
+        bad.kind = "parametric".into();
         assert!(SmoothPatchesMessage::from_bytes(&bad.to_bytes().unwrap()).is_err());
         let mut bad = msg.clone();
         bad.quads[0..4].copy_from_slice(&99u32.to_le_bytes());

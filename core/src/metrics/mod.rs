@@ -1,10 +1,13 @@
 //! Measurements nodes report about themselves: latency percentiles and message
-//! rates. Pure: callers pass the timestamps in.
+//! rates (pure: callers pass the timestamps in), and the heap a computation
+//! takes, through a counting allocator that benchmarks install.
 
+mod allocation;
 mod percentiles;
 mod rate;
 mod summary;
 
+pub use allocation::{live_bytes, peak_bytes, reset_peak, CountingAllocator};
 pub use percentiles::{LatencySummary, Percentiles};
 pub use rate::RateMeter;
 pub use summary::GraphSummary;

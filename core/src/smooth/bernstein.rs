@@ -15,6 +15,26 @@ pub fn bernstein5(t: f64) -> [f64; 6] {
     ]
 }
 
+/// `B_i^5(t)` and their first derivatives `5 (B_{i-1}^4 - B_i^4)`, without
+/// allocating: the inner loop of foot-point projection.
+pub fn bernstein5_jet(t: f64) -> ([f64; 6], [f64; 6]) {
+    let s = 1.0 - t;
+    let b4 = [
+        s * s * s * s,
+        4.0 * t * s * s * s,
+        6.0 * t * t * s * s,
+        4.0 * t * t * t * s,
+        t * t * t * t,
+    ];
+    let mut d = [0.0; 6];
+    for (i, di) in d.iter_mut().enumerate() {
+        let left = if i > 0 { b4[i - 1] } else { 0.0 };
+        let right = if i < 5 { b4[i] } else { 0.0 };
+        *di = 5.0 * (left - right);
+    }
+    (bernstein5(t), d)
+}
+
 /// The `order`-th derivative of every `B_i^5` at `t` (order 0 to 2).
 pub fn bernstein5_derivative(t: f64, order: usize) -> [f64; 6] {
     // d/dt B_i^n = n (B_{i-1}^{n-1} - B_i^{n-1}), applied `order` times.
@@ -61,6 +81,11 @@ mod tests {
             let d = bernstein5_derivative(t, 1);
             for i in 0..6 {
                 assert!((d[i] - (hi[i] - lo[i]) / width).abs() < 1e-4, "t {t} i {i}");
+            }
+            let (b, d1) = bernstein5_jet(t);
+            for i in 0..6 {
+                assert!((b[i] - bernstein5(t)[i]).abs() < 1e-15);
+                assert!((d1[i] - d[i]).abs() < 1e-12);
             }
             // Derivatives of a partition of unity sum to zero.
             assert!(bernstein5_derivative(t, 2).iter().sum::<f64>().abs() < 1e-9);

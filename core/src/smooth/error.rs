@@ -29,6 +29,8 @@ pub enum SmoothError {
     Lambda(f64),
     #[error("point {index} ({x}, {y}) is outside the planar domain")]
     OutsideDomain { index: usize, x: f64, y: f64 },
+    #[error("point {index} has a non-finite coordinate (NaN or infinite)")]
+    NonFinitePoint { index: usize },
     #[error("point {index} gives no direction from the centre (zero or not finite)")]
     NoDirection { index: usize },
     #[error("the domain mesh is not planar in z = 0 (vertex {vertex} has z = {z})")]

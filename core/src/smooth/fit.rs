@@ -9,6 +9,7 @@
 
 use super::bernstein::bernstein5;
 use super::error::SmoothError;
+use super::foot_point::PatchAdjacency;
 use super::thin_plate::thin_plate_gram;
 use crate::mesh::{G1Basis, G1Domain, PATCH_COEFFICIENTS};
 use faer::linalg::solvers::Solve;
@@ -103,6 +104,7 @@ pub struct SmoothFitter {
     /// Per face: the functions alive on it and their 36 local coefficients.
     per_face: Vec<Vec<(usize, [f64; PATCH_COEFFICIENTS])>>,
     thin: Vec<f64>,
+    adjacency: PatchAdjacency,
 }
 
 impl SmoothFitter {
@@ -127,11 +129,38 @@ impl SmoothFitter {
             }
         }
         Ok(Self {
+            adjacency: PatchAdjacency::new(&domain.mesh),
             domain,
             basis,
             per_face,
             thin: thin_plate_gram(),
         })
+    }
+
+    /// Non-zeros in the lower triangle of the normal matrix of eq. (26): the
+    /// pairs of functions that share a patch (what the sparse factorisation
+    /// and the memory of a fit grow with, beside the points).
+    pub fn normal_matrix_nonzeros(&self) -> usize {
+        let mut pairs: Vec<(usize, usize)> = self
+            .per_face
+            .iter()
+            .flat_map(|active| {
+                active.iter().flat_map(move |(kx, _)| {
+                    active
+                        .iter()
+                        .filter(move |(ky, _)| ky <= kx)
+                        .map(move |(ky, _)| (*kx, *ky))
+                })
+            })
+            .collect();
+        pairs.sort_unstable();
+        pairs.dedup();
+        pairs.len()
+    }
+
+    /// Which patch lies across each side of each patch.
+    pub fn adjacency(&self) -> &PatchAdjacency {
+        &self.adjacency
     }
 
     /// Minimises eq. (26) for `samples` with `dim` values each (`values[n dim + d]`).
@@ -268,15 +297,22 @@ impl SmoothFitter {
                     b[6 * j + i] = bu[i] * bv[j];
                 }
             }
+            // The Gram matrix is symmetric: accumulate its lower triangle
+            // only (half the work of the hottest loop), mirrored below.
             for a in 0..P {
                 let ba = b[a];
-                let row = &mut gram[a * P..(a + 1) * P];
+                let row = &mut gram[a * P..a * P + a + 1];
                 for (g, bb) in row.iter_mut().zip(&b) {
                     *g += ba * bb;
                 }
                 for d in 0..dim {
                     right[a * dim + d] += ba * values[n * dim + d];
                 }
+            }
+        }
+        for a in 0..P {
+            for c in 0..a {
+                gram[c * P + a] = gram[a * P + c];
             }
         }
         if lambda > 0.0 {
@@ -329,72 +365,5 @@ impl SmoothFitter {
             }
         }
         out
-    }
-}
-
-impl SmoothSurface {
-    /// A graph surface (`dim` 1 over a planar domain) as a quad mesh: each
-    /// patch sampled on an `n x n` grid, at the domain's bilinear position with
-    /// the fitted value as height. Patches keep their own border vertices.
-    pub fn tessellate_graph(
-        &self,
-        domain: &crate::mesh::QuadMesh,
-        n: usize,
-    ) -> Result<crate::mesh::QuadMesh, crate::mesh::MeshError> {
-        self.tessellate(domain, n, |mut p, value| {
-            p[2] = value;
-            p
-        })
-    }
-
-    /// A radial surface (`dim` 1 over a closed mesh around the origin, such as
-    /// the cube-sphere) as a quad mesh: the fitted value is the distance from
-    /// the origin along the domain point's direction.
-    pub fn tessellate_radial(
-        &self,
-        domain: &crate::mesh::QuadMesh,
-        n: usize,
-    ) -> Result<crate::mesh::QuadMesh, crate::mesh::MeshError> {
-        self.tessellate(domain, n, |p, value| {
-            let norm = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2])
-                .sqrt()
-                .max(f64::MIN_POSITIVE);
-            p.map(|x| x / norm * value)
-        })
-    }
-
-    fn tessellate(
-        &self,
-        domain: &crate::mesh::QuadMesh,
-        n: usize,
-        place: impl Fn([f64; 3], f64) -> [f64; 3],
-    ) -> Result<crate::mesh::QuadMesh, crate::mesh::MeshError> {
-        let n = n.max(1);
-        let v = domain.vertices();
-        let mut vertices = Vec::new();
-        let mut quads = Vec::new();
-        for (f, quad) in domain.faces().iter().enumerate() {
-            let base = vertices.len() as u32;
-            for b in 0..=n {
-                for a in 0..=n {
-                    let (u, w) = (a as f64 / n as f64, b as f64 / n as f64);
-                    let weights = [(1.0 - u) * (1.0 - w), u * (1.0 - w), u * w, (1.0 - u) * w];
-                    let mut p = [0.0; 3];
-                    for (k, &corner) in quad.iter().enumerate() {
-                        for (c, x) in p.iter_mut().enumerate() {
-                            *x += weights[k] * v[corner as usize][c];
-                        }
-                    }
-                    vertices.push(place(p, self.evaluate(f, u, w)[0]));
-                }
-            }
-            let at = |a: usize, b: usize| base + (b * (n + 1) + a) as u32;
-            for b in 0..n {
-                for a in 0..n {
-                    quads.push([at(a, b), at(a + 1, b), at(a + 1, b + 1), at(a, b + 1)]);
-                }
-            }
-        }
-        crate::mesh::QuadMesh::new(vertices, quads)
     }
 }

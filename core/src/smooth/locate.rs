@@ -21,11 +21,7 @@ impl PlanarLocator {
     /// The mesh must lie in z = 0 (within 1e-9 of its size).
     pub fn new(mesh: &QuadMesh) -> Result<Self, SmoothError> {
         let v = mesh.vertices();
-        let size = v
-            .iter()
-            .flat_map(|p| [p[0].abs(), p[1].abs()])
-            .fold(1.0f64, f64::max);
-        if let Some(vertex) = v.iter().position(|p| p[2].abs() > 1e-9 * size) {
+        if let Some(vertex) = non_planar_vertex(mesh) {
             return Err(SmoothError::NotPlanar {
                 vertex,
                 z: v[vertex][2],
@@ -106,6 +102,21 @@ impl PlanarLocator {
             })
             .collect()
     }
+}
+
+/// Whether `mesh` lies in the plane z = 0 (within 1e-9 of its size): a
+/// domain for graphs z(x, y).
+pub fn is_planar(mesh: &QuadMesh) -> bool {
+    non_planar_vertex(mesh).is_none()
+}
+
+fn non_planar_vertex(mesh: &QuadMesh) -> Option<usize> {
+    let v = mesh.vertices();
+    let size = v
+        .iter()
+        .flat_map(|p| [p[0].abs(), p[1].abs()])
+        .fold(1.0f64, f64::max);
+    v.iter().position(|p| p[2].abs() > 1e-9 * size)
 }
 
 /// `(u, v)` with `bilinear(q, u, v) = (x, y)` inside the unit square (up to a

@@ -11,18 +11,27 @@
 mod bernstein;
 mod error;
 mod fit;
+mod foot_point;
 mod locate;
+mod parametric;
 mod parametrisation;
 mod sphere;
+mod surface_locator;
+mod tessellate;
 mod thin_plate;
 
 #[cfg(test)]
+mod parametric_tests;
+#[cfg(test)]
 mod tests;
 
-pub use bernstein::{bernstein5, bernstein5_derivative};
+pub use bernstein::{bernstein5, bernstein5_derivative, bernstein5_jet};
 pub use error::SmoothError;
 pub use fit::{FitErrors, Sample, SmoothFitter, SmoothSurface};
-pub use locate::PlanarLocator;
+pub use foot_point::{foot_point, BilinearPatches, PatchAdjacency, PatchSurface};
+pub use locate::{is_planar, PlanarLocator};
+pub use parametric::{correct_parameters, ParametricFit};
 pub use parametrisation::Parametrisation;
 pub use sphere::{cube_sphere, SphereLocator};
+pub use surface_locator::SurfaceLocator;
 pub use thin_plate::thin_plate_gram;

@@ -1,12 +1,11 @@
 //! `shroud bench`: reproduces the timing tables of paper 000 on the paper's own
 //! scene and prints them beside the paper's numbers (markdown, for the README).
 
-mod alloc;
 mod latency;
 mod paper000;
 mod timing;
 
-pub use alloc::{live_bytes, peak_bytes, reset_peak, CountingAllocator};
+pub use shroud_core::metrics::{live_bytes, peak_bytes, reset_peak, CountingAllocator};
 pub use timing::{median, timed};
 
 use anyhow::Result;

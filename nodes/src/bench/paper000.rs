@@ -2,7 +2,7 @@
 //! (time vs n at N = 30K), Figure 9 (iterations per line), and the Section 3
 //! trial-and-error baseline against Heuristic(σ, b, λ).
 
-use super::{alloc, median, timed, BenchArgs};
+use super::{median, timed, BenchArgs};
 use anyhow::Result;
 use shroud_core::surrogate::{
     fit_curve_above, fit_curve_by_trial_and_error, FitOptions, Histogram, SurrogateFitter,
@@ -69,10 +69,11 @@ fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
         ] {
             for _ in 0..runs {
                 let mut fitter = SurrogateFitter::new(options(tightness))?;
-                let before = alloc::live_bytes();
-                alloc::reset_peak();
+                let before = shroud_core::metrics::live_bytes();
+                shroud_core::metrics::reset_peak();
                 let (fit, ms) = timed(|| fitter.fit(&pts));
-                extra_bytes = extra_bytes.max(alloc::peak_bytes().saturating_sub(before));
+                extra_bytes =
+                    extra_bytes.max(shroud_core::metrics::peak_bytes().saturating_sub(before));
                 certified(&fit?)?;
                 out.push(ms);
             }

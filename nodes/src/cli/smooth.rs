@@ -1,22 +1,27 @@
 //! `shroud smooth`: the G1 smooth fitter (paper 004). With `--info`, the
 //! quad-mesh domain's classification (Section 2), the dimension of its G1
 //! space (Corollary 1) and the size of the computed local basis. With an
-//! input cloud, the least-squares fit (eq. 26) of the cloud as a graph over a
-//! planar quad-mesh domain: each point (x, y, z) is located in the domain by
-//! inverse bilinear maps and z is fitted; the error measures (28) and timing
-//! are printed, and the surface written as patches (JSON) or a tessellated
-//! mesh (OBJ).
+//! input cloud, the least-squares fit (eq. 26): a graph z(x, y) over a planar
+//! domain, a radial function over the cube-sphere, or a parametric surface in
+//! R^3 over a quad mesh in space, improved by parameter correction. The error
+//! measures (28) and timing are printed, and the surface written as patches
+//! (JSON) or a tessellated mesh (OBJ, PLY).
 
 use crate::files;
 use anyhow::{bail, Context, Result};
-use shroud_core::mesh::{parse_obj, write_obj, G1Basis, G1Domain, MeshError, QuadMesh};
-use shroud_core::smooth::{cube_sphere, Parametrisation, SmoothFitter};
+use shroud_core::format::TriangleMesh;
+use shroud_core::mesh::{parse_obj, write_obj, G1Basis, G1Domain, QuadMesh};
+use shroud_core::smooth::{
+    cube_sphere, is_planar, FitErrors, Parametrisation, Sample, SmoothFitter, SmoothSurface,
+};
 use std::path::PathBuf;
 use std::time::Instant;
 
 #[derive(clap::Args, Debug)]
 pub struct SmoothArgs {
-    /// The cloud to fit (.ply, .xyz, .csv): a graph z(x, y) over the domain.
+    /// The cloud to fit (.ply, .xyz, .csv): a graph z(x, y) over a planar
+    /// domain, a radial function over the sphere, or a surface in R^3 over a
+    /// quad mesh in space.
     pub input: Option<PathBuf>,
     #[command(flatten)]
     pub domain: SmoothDomainArgs,
@@ -26,7 +31,13 @@ pub struct SmoothArgs {
     /// Thin-plate smoothing weight lambda of eq. (26).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub lambda: f64,
-    /// Output: .json (patch coefficients, see core/FORMATS.md) or .obj (tessellated).
+    /// Rounds of parameter correction (foot points on the fitted surface,
+    /// then a refit) for a parametric fit; default 3 there. Graphs and radial
+    /// functions have exact parameters and take none.
+    #[arg(long)]
+    pub corrections: Option<usize>,
+    /// Output: .json (patch coefficients, see core/FORMATS.md), or .obj / .ply
+    /// (the surface tessellated).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Grid per patch of the tessellated output.
@@ -37,13 +48,16 @@ pub struct SmoothArgs {
 /// The fitting domain, shared by `shroud smooth` and the `smooth` node.
 #[derive(clap::Args, Debug, Clone)]
 pub struct SmoothDomainArgs {
-    /// The domain: a quad mesh as OBJ (every face a quad, manifold; in z = 0
-    /// to fit a graph z(x, y)).
+    /// The domain: a quad mesh as OBJ (every face a quad, manifold). In the
+    /// plane z = 0 the cloud is fitted as a graph z(x, y); in space, as a
+    /// parametric surface (each point starts at its foot point on the mesh).
     #[arg(long, required_unless_present = "domain", conflicts_with = "domain")]
     pub mesh: Option<PathBuf>,
     /// Or a built-in domain: `sphere` or `sphere:LEVELS`, the cube-sphere
     /// refined LEVELS times (default 2: the paper's 96 faces), to fit a radial
-    /// function r(direction) of points around the origin.
+    /// function r(direction) of points around the origin; or
+    /// `plane:X0,Y0,X1,Y1[,N]`, the rectangle split into N x N quads (default
+    /// 4), to fit a graph z(x, y).
     #[arg(long)]
     pub domain: Option<String>,
 }
@@ -67,10 +81,11 @@ impl SmoothDomainArgs {
     pub fn load(&self) -> Result<(G1Domain, Parametrisation)> {
         let (domain, kind, name) = self.domain()?;
         let parametrisation = match kind {
-            DomainKind::Planar => Parametrisation::graph(&domain.mesh).with_context(|| {
-                format!("{name}: a fitting domain from a file must be planar (z = 0)")
-            })?,
+            DomainKind::Planar => Parametrisation::graph(&domain.mesh)
+                .with_context(|| format!("{name}: not a planar domain"))?,
             DomainKind::Sphere => Parametrisation::radial(&domain.mesh),
+            DomainKind::Space => Parametrisation::parametric(&domain.mesh)
+                .with_context(|| format!("{name}: cannot refine the mesh"))?,
         };
         Ok((domain, parametrisation))
     }
@@ -79,8 +94,12 @@ impl SmoothDomainArgs {
 /// Which kind of domain the points are fitted over.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum DomainKind {
+    /// In the plane z = 0: graphs.
     Planar,
+    /// The cube-sphere: radial functions.
     Sphere,
+    /// A mesh in space: parametric surfaces.
+    Space,
 }
 
 pub fn run(args: &SmoothArgs) -> Result<()> {
@@ -101,23 +120,60 @@ fn domain_mesh(args: &SmoothDomainArgs) -> Result<(QuadMesh, DomainKind, String)
         let bytes =
             std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
         let mesh = parse_obj(&bytes).with_context(|| format!("{}", path.display()))?;
-        return Ok((mesh, DomainKind::Planar, path.display().to_string()));
+        let kind = if is_planar(&mesh) {
+            DomainKind::Planar
+        } else {
+            DomainKind::Space
+        };
+        return Ok((mesh, kind, path.display().to_string()));
     }
     let text = args.domain.as_deref().unwrap_or_default();
-    let levels = match text.split_once(':') {
-        None if text == "sphere" => 2,
-        Some(("sphere", n)) => n
-            .parse::<usize>()
-            .ok()
-            .filter(|n| *n <= 5)
-            .with_context(|| format!("--domain {text}: LEVELS must be 0 to 5"))?,
-        _ => bail!("--domain {text:?}: expected sphere or sphere:LEVELS"),
+    let (name, parameters) = text.split_once(':').unwrap_or((text, ""));
+    match name {
+        "sphere" => {
+            let levels = match parameters {
+                "" => 2,
+                n => n
+                    .parse::<usize>()
+                    .ok()
+                    .filter(|n| *n <= 5)
+                    .with_context(|| format!("--domain {text}: LEVELS must be 0 to 5"))?,
+            };
+            Ok((
+                cube_sphere(levels)?,
+                DomainKind::Sphere,
+                format!("the cube-sphere ({levels} levels)"),
+            ))
+        }
+        "plane" => Ok((
+            plane_domain(text, parameters)?,
+            DomainKind::Planar,
+            format!("the rectangle {parameters}"),
+        )),
+        _ => bail!("--domain {text:?}: expected sphere[:LEVELS] or plane:X0,Y0,X1,Y1[,N]"),
+    }
+}
+
+/// `X0,Y0,X1,Y1[,N]`: the rectangle split into N x N quads.
+fn plane_domain(text: &str, parameters: &str) -> Result<QuadMesh> {
+    let numbers: Vec<f64> = parameters
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .ok()
+        .filter(|v: &Vec<f64>| (4..=5).contains(&v.len()) && v.iter().all(|x| x.is_finite()))
+        .with_context(|| format!("--domain {text}: expected plane:X0,Y0,X1,Y1[,N] (numbers)"))?;
+    let (x0, y0, x1, y1) = (numbers[0], numbers[1], numbers[2], numbers[3]);
+    anyhow::ensure!(
+        x1 > x0 && y1 > y0,
+        "--domain {text}: the rectangle must have X1 > X0 and Y1 > Y0"
+    );
+    let n = match numbers.get(4) {
+        None => 4,
+        Some(&n) if n.fract() == 0.0 && (1.0..=256.0).contains(&n) => n as u32,
+        Some(_) => bail!("--domain {text}: N must be a whole number from 1 to 256"),
     };
-    Ok((
-        cube_sphere(levels)?,
-        DomainKind::Sphere,
-        format!("the cube-sphere ({levels} levels)"),
-    ))
+    Ok(shroud_core::mesh::rectangle_mesh([x0, y0], [x1, y1], n)?)
 }
 
 fn info(domain: &G1Domain) -> Result<()> {
@@ -137,14 +193,7 @@ fn info(domain: &G1Domain) -> Result<()> {
     );
     println!("dimension: {}", d.total());
     let start = Instant::now();
-    let basis = match G1Basis::new(domain) {
-        Ok(basis) => basis,
-        Err(MeshError::Unsupported { what }) => {
-            println!("basis: not computed ({what} is not supported yet)");
-            return Ok(());
-        }
-        Err(e) => return Err(e).context("cannot build the G1 basis"),
-    };
+    let basis = G1Basis::new(domain).context("cannot build the G1 basis")?;
     let matches = basis.len() == d.total();
     println!(
         "basis: {} functions computed in {:.1} ms ({})",
@@ -168,41 +217,145 @@ fn info(domain: &G1Domain) -> Result<()> {
 fn fit(args: &SmoothArgs, input: &std::path::Path) -> Result<()> {
     let start = Instant::now();
     let (domain, parametrisation) = args.domain.load()?;
+    let corrections = corrections(args.corrections, &parametrisation)?;
     let points = files::read_cloud(input)?;
     let xyz: Vec<[f64; 3]> = points.iter().map(|p| p.map(f64::from)).collect();
     let (samples, values) = parametrisation
         .sample_all(&xyz)
         .with_context(|| format!("{} over the domain", input.display()))?;
+    let located = start.elapsed().as_secs_f64();
     let mesh = domain.mesh.clone();
     let fitter = SmoothFitter::new(domain).context("cannot build the G1 basis")?;
-    let surface = fitter
-        .fit(&samples, &values, 1, args.lambda)
-        .with_context(|| format!("cannot fit {}", input.display()))?;
+    let fit = fit_samples(
+        &fitter,
+        &parametrisation,
+        &samples,
+        &values,
+        args.lambda,
+        corrections,
+    )
+    .with_context(|| format!("cannot fit {}", input.display()))?;
     let seconds = start.elapsed().as_secs_f64();
-    let e = surface.errors(&samples, &values);
     println!(
-        "fitted {} points with {} G1 functions on {} patches (lambda {}) in {seconds:.3} s",
+        "fitted {} points ({}) with {} G1 functions on {} patches (lambda {}) in {seconds:.3} s (locating {located:.3} s)",
         points.len(),
+        parametrisation.kind(),
         fitter.basis.len(),
         mesh.face_count(),
         args.lambda
     );
+    for (round, e) in fit.rounds.iter().enumerate().take(fit.rounds.len() - 1) {
+        println!(
+            "after {round} corrections: min {:.3e}  L-inf {:.3e}  RMSE {:.3e}",
+            e.min, e.max, e.rmse
+        );
+    }
+    let e = fit.errors();
     println!(
         "errors: min {:.3e}  L-inf {:.3e}  RMSE {:.3e}",
         e.min, e.max, e.rmse
     );
-    let Some(output) = &args.output else {
-        return Ok(());
-    };
+    if let Some(d) = fit.distances {
+        println!(
+            "distance to the surface (foot points): min {:.3e}  L-inf {:.3e}  RMSE {:.3e}",
+            d.min, d.max, d.rmse
+        );
+    }
+    match &args.output {
+        Some(output) => write_output(args, output, &mesh, &parametrisation, &fit.surface, e),
+        None => Ok(()),
+    }
+}
+
+/// The number of correction rounds: 3 by default for parametric fits; graphs
+/// and radial functions have exact parameters.
+pub fn corrections(asked: Option<usize>, parametrisation: &Parametrisation) -> Result<usize> {
+    match (asked, parametrisation) {
+        (None, Parametrisation::Parametric(_)) => Ok(3),
+        (Some(k), Parametrisation::Parametric(_)) => Ok(k),
+        (None | Some(0), _) => Ok(0),
+        (Some(_), p) => bail!(
+            "--corrections applies to parametric fits (a --mesh in space); a {} fit has exact parameters",
+            p.kind()
+        ),
+    }
+}
+
+/// A fit and the errors of each round (one unless corrected).
+pub struct FitRounds {
+    pub surface: SmoothSurface,
+    pub rounds: Vec<FitErrors>,
+    /// For parametric fits: the distances at the foot points.
+    pub distances: Option<FitErrors>,
+}
+
+impl FitRounds {
+    /// The errors of the last round.
+    pub fn errors(&self) -> FitErrors {
+        self.rounds.last().copied().unwrap_or_default()
+    }
+}
+
+/// Fits `values` at `samples` as the parametrisation asks: parametric fits
+/// with `corrections` rounds of parameter correction.
+pub fn fit_samples(
+    fitter: &SmoothFitter,
+    parametrisation: &Parametrisation,
+    samples: &[Sample],
+    values: &[f64],
+    lambda: f64,
+    corrections: usize,
+) -> Result<FitRounds, shroud_core::smooth::SmoothError> {
+    if let Parametrisation::Parametric(_) = parametrisation {
+        let fit = fitter.fit_parametric(samples, values, lambda, corrections)?;
+        return Ok(FitRounds {
+            surface: fit.surface,
+            rounds: fit.rounds,
+            distances: Some(fit.distances),
+        });
+    }
+    let surface = fitter.fit(samples, values, 1, lambda)?;
+    let rounds = vec![surface.errors(samples, values)];
+    Ok(FitRounds {
+        surface,
+        rounds,
+        distances: None,
+    })
+}
+
+/// The surface tessellated as the parametrisation places its values.
+pub fn tessellate(
+    surface: &SmoothSurface,
+    mesh: &QuadMesh,
+    parametrisation: &Parametrisation,
+    n: usize,
+) -> Result<QuadMesh, shroud_core::mesh::MeshError> {
+    match parametrisation {
+        Parametrisation::Graph(_) => surface.tessellate_graph(mesh, n),
+        Parametrisation::Radial(_) => surface.tessellate_radial(mesh, n),
+        Parametrisation::Parametric(_) => surface.tessellate_parametric(mesh, n),
+    }
+}
+
+fn write_output(
+    args: &SmoothArgs,
+    output: &std::path::Path,
+    mesh: &QuadMesh,
+    parametrisation: &Parametrisation,
+    surface: &SmoothSurface,
+    e: FitErrors,
+) -> Result<()> {
     let ext = output
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
+    let tessellated = || tessellate(surface, mesh, parametrisation, args.tessellation);
     let bytes = match ext.as_deref() {
-        Some("obj") => write_obj(&match parametrisation {
-            Parametrisation::Graph(_) => surface.tessellate_graph(&mesh, args.tessellation)?,
-            Parametrisation::Radial(_) => surface.tessellate_radial(&mesh, args.tessellation)?,
-        }),
+        Some("obj") => write_obj(&tessellated()?),
+        Some("ply") => {
+            let (vertices, quads) = tessellated()?.into_parts();
+            TriangleMesh::from_quads(vertices, &quads).to_ply(false)
+        }
         Some("json") => serde_json::to_vec(&serde_json::json!({
             "format": "shroud-g1-patches",
             "version": 1,
@@ -213,8 +366,10 @@ fn fit(args: &SmoothArgs, input: &std::path::Path) -> Result<()> {
             "patches": surface.coefficients.chunks(36 * surface.dim).collect::<Vec<_>>(),
             "errors": { "min": e.min, "max": e.max, "rmse": e.rmse },
         }))?,
-        _ => bail!("{}: the output must be .json or .obj", output.display()),
+        _ => bail!(
+            "{}: the output must be .json, .obj or .ply",
+            output.display()
+        ),
     };
-    files::write(output, &bytes)?;
-    Ok(())
+    files::write(output, &bytes)
 }

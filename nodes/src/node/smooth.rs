@@ -1,11 +1,12 @@
 //! The `smooth` node: the accurate counterpart of the safe surrogate (paper
 //! 004). It fits every incoming cloud by G1 smooth spline functions over a
 //! configured domain (a planar quad mesh for graphs, the cube-sphere for
-//! radial functions) and publishes the patches with their error measures.
+//! radial functions, a quad mesh in space for parametric surfaces with
+//! parameter correction) and publishes the patches with their error measures.
 //! Points outside the domain are skipped and counted.
 
 use super::runtime::{run_node, NodeCommon, NodeContext};
-use crate::cli::SmoothDomainArgs;
+use crate::cli::{fit_samples, smooth_corrections, SmoothDomainArgs};
 use crate::transport::{unix_ns, Mailbox};
 use anyhow::Result;
 use clap::Args;
@@ -31,6 +32,9 @@ pub struct SmoothNodeArgs {
     /// Thin-plate smoothing weight lambda of eq. (26).
     #[arg(long, default_value_t = 1e-6)]
     pub lambda: f64,
+    /// Rounds of parameter correction for a parametric fit (default 3).
+    #[arg(long)]
+    pub corrections: Option<usize>,
 }
 
 pub fn run(args: SmoothNodeArgs) -> Result<()> {
@@ -39,10 +43,11 @@ pub fn run(args: SmoothNodeArgs) -> Result<()> {
         "--lambda must be finite and >= 0"
     );
     let (domain, parametrisation) = args.domain.load()?;
+    let corrections = smooth_corrections(args.corrections, &parametrisation)?;
     let fitter = SmoothFitter::new(domain)?;
     let common = args.common.clone();
     run_node(&common, "smooth", move |ctx| {
-        serve(ctx, args, fitter, parametrisation)
+        serve(ctx, args, fitter, parametrisation, corrections)
     })
 }
 
@@ -51,6 +56,7 @@ fn serve(
     args: SmoothNodeArgs,
     fitter: SmoothFitter,
     parametrisation: Parametrisation,
+    corrections: usize,
 ) -> Result<()> {
     let input = ctx.key(TopicKind::Cloud, &args.input)?;
     let output = ctx.key(
@@ -69,7 +75,13 @@ fn serve(
             continue;
         };
         ctx.metrics.add("received", 1);
-        match fit_one(&ctx, &args, &fitter, &parametrisation, &payload) {
+        let setup = FitSetup {
+            fitter: &fitter,
+            parametrisation: &parametrisation,
+            lambda: args.lambda,
+            corrections,
+        };
+        match fit_one(&ctx, &setup, &payload) {
             Ok(Some(bytes)) => match publisher.put(bytes).wait() {
                 Ok(()) => ctx.metrics.add("published", 1),
                 Err(e) => {
@@ -88,13 +100,25 @@ fn serve(
 /// Decodes, fits and encodes one cloud. A malformed message is an error (the
 /// caller counts it); a cloud that cannot be fitted is logged and counted
 /// here, and gives `None`.
+/// What every cloud is fitted with.
+struct FitSetup<'a> {
+    fitter: &'a SmoothFitter,
+    parametrisation: &'a Parametrisation,
+    lambda: f64,
+    corrections: usize,
+}
+
 fn fit_one(
     ctx: &NodeContext,
-    args: &SmoothNodeArgs,
-    fitter: &SmoothFitter,
-    parametrisation: &Parametrisation,
+    setup: &FitSetup<'_>,
     payload: &ZBytes,
 ) -> Result<Option<Vec<u8>>, shroud_core::message::MessageError> {
+    let FitSetup {
+        fitter,
+        parametrisation,
+        lambda,
+        corrections,
+    } = *setup;
     let bytes = payload.to_bytes();
     let msg = CloudView::from_bytes(&bytes)?;
     let mut points = Vec::new();
@@ -103,15 +127,25 @@ fn fit_one(
     let xyz: Vec<[f64; 3]> = points.iter().map(|p| p.map(f64::from)).collect();
     let (samples, values, outside) = parametrisation.sample_inside(&xyz);
     ctx.metrics.add("points_outside", outside as u64);
-    let surface = match fitter.fit(&samples, &values, 1, args.lambda) {
-        Ok(surface) => surface,
+    let fit = fit_samples(
+        fitter,
+        parametrisation,
+        &samples,
+        &values,
+        lambda,
+        corrections,
+    );
+    let (surface, errors) = match fit {
+        Ok(fit) => {
+            let errors = fit.errors();
+            (fit.surface, errors)
+        }
         Err(e) => {
             ctx.metrics.add("fit_errors", 1);
             tracing::warn!(sequence = msg.sequence, "cloud not fitted: {e}");
             return Ok(None);
         }
     };
-    let errors = surface.errors(&samples, &values);
     let fit_ns = start.elapsed().as_nanos() as u64;
     ctx.metrics.set("fit_ms", fit_ns as f64 / 1e6);
     ctx.metrics.set("rmse", errors.rmse);
@@ -125,7 +159,7 @@ fn fit_one(
         source: &msg.source,
         kind: parametrisation.kind(),
         functions: fitter.basis.len(),
-        lambda: args.lambda,
+        lambda,
         points: samples.len(),
         outside,
         errors,

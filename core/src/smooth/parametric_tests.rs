@@ -1,0 +1,225 @@
+//! Tests of parametric fitting: border-crossing parameter moves, foot points,
+//! surface derivatives and parameter correction.
+
+use super::*;
+use crate::math::fibonacci_sphere;
+use crate::mesh::{catmull_clark, cube_mesh, sample_limit_surface, G1Domain, QuadMesh};
+use glam::DVec3;
+
+/// A 3 x 3 grid of unit squares in z = 0.
+fn grid3() -> QuadMesh {
+    let v = |i: u32, j: u32| j * 4 + i;
+    let vertices = (0..16)
+        .map(|k| [(k % 4) as f64, (k / 4) as f64, 0.0])
+        .collect();
+    let faces = (0..9)
+        .map(|k| {
+            let (i, j) = (k % 3, k / 3);
+            [v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)]
+        })
+        .collect();
+    QuadMesh::new(vertices, faces).unwrap()
+}
+
+#[test]
+fn parameters_past_a_side_continue_in_the_neighbour() {
+    let mesh = grid3();
+    let patches = BilinearPatches::new(&mesh);
+    let adjacency = PatchAdjacency::new(&mesh);
+    // From the centre square, moves past each side and past a corner land on
+    // the point with the same position in the plane.
+    for (u, v) in [
+        (1.3, 0.4),
+        (-0.2, 0.7),
+        (0.5, 1.25),
+        (0.1, -0.4),
+        (1.2, 1.3),
+        (-0.3, -0.1),
+    ] {
+        let s = adjacency.wrap(4, u, v);
+        assert_ne!(s.face, 4, "({u}, {v})");
+        let want = DVec3::new(1.0 + u, 1.0 + v, 0.0);
+        let got = patches.jet(s.face, s.u, s.v)[0];
+        assert!((got - want).length() < 1e-12, "({u}, {v}): {got} vs {want}");
+    }
+    // Inside, nothing moves; past the domain's boundary, clamped.
+    assert_eq!(
+        adjacency.wrap(4, 0.3, 0.6),
+        Sample {
+            face: 4,
+            u: 0.3,
+            v: 0.6
+        }
+    );
+    assert_eq!(
+        adjacency.wrap(0, -0.5, 0.2),
+        Sample {
+            face: 0,
+            u: 0.0,
+            v: 0.2
+        }
+    );
+    // On a closed mesh every move ends inside some patch.
+    let sphere = cube_sphere(1).unwrap();
+    let adjacency = PatchAdjacency::new(&sphere);
+    for f in 0..sphere.face_count() {
+        for (u, v) in [(1.4, 0.5), (-0.4, -0.4), (0.5, 1.9)] {
+            let s = adjacency.wrap(f, u, v);
+            assert!((0.0..=1.0).contains(&s.u) && (0.0..=1.0).contains(&s.v));
+        }
+    }
+}
+
+#[test]
+fn points_of_the_limit_surface_get_their_own_parameters_back() {
+    // A domain mesh in space and points of its Catmull-Clark limit surface at
+    // known parameters: the locator's foot points on its stand-in surface
+    // give those parameters back, up to the stand-in's small deviation.
+    let mesh = catmull_clark(&cube_mesh()).unwrap();
+    let locator = SurfaceLocator::new(&mesh).unwrap();
+    let cloud = sample_limit_surface(&mesh, 2000, 5, 5).unwrap();
+    let mut same_face = 0;
+    for s in &cloud {
+        let found = locator.locate(s.point).unwrap();
+        if found.face == s.face {
+            same_face += 1;
+            let off = (found.u - s.u).abs() + (found.v - s.v).abs();
+            assert!(off < 0.02, "{s:?} -> {found:?}");
+        }
+    }
+    // Points within rounding of an edge may land on the neighbour.
+    assert!(same_face > 1980, "{same_face}");
+    assert!(locator.locate([f64::NAN, 0.0, 0.0]).is_none());
+}
+
+#[test]
+fn surface_derivatives_match_differences() {
+    let mesh = cube_sphere(1).unwrap();
+    let fitter = SmoothFitter::new(G1Domain::new(mesh).unwrap()).unwrap();
+    let surface = sphere_surface(&fitter);
+    let h = 1e-6;
+    for (face, u, v) in [(0, 0.3, 0.6), (7, 0.5, 0.1), (19, 0.9, 0.95)] {
+        let [_, du, dv] = surface.jet(face, u, v);
+        let at = |u: f64, v: f64| DVec3::from_slice(&surface.evaluate(face, u, v));
+        let fu = (at(u + h, v) - at(u - h, v)) / (2.0 * h);
+        let fv = (at(u, v + h) - at(u, v - h)) / (2.0 * h);
+        assert!((fu - du).length() < 1e-6 && (fv - dv).length() < 1e-6);
+    }
+}
+
+/// The unit sphere fitted in R^3 over the cube-sphere (central projection).
+fn sphere_surface(fitter: &SmoothFitter) -> SmoothSurface {
+    let parametrisation = Parametrisation::radial(&fitter.domain.mesh);
+    let points: Vec<[f64; 3]> = fibonacci_sphere(4000)
+        .iter()
+        .map(|d| d.to_array())
+        .collect();
+    let (samples, _) = parametrisation.sample_all(&points).unwrap();
+    let values: Vec<f64> = points.iter().flatten().copied().collect();
+    fitter.fit(&samples, &values, 3, 0.0).unwrap()
+}
+
+#[test]
+fn parameter_correction_recovers_a_surface_of_the_space() {
+    // Points of a surface of the space, given with parameters shifted by up
+    // to a fifth of a patch (across borders): the first fit is poor, the
+    // corrections bring it back to the surface.
+    let mesh = cube_sphere(1).unwrap();
+    let fitter = SmoothFitter::new(G1Domain::new(mesh).unwrap()).unwrap();
+    let truth = sphere_surface(&fitter);
+    let faces = fitter.domain.mesh.face_count();
+    let mut x = 0.123f64;
+    let mut next = || {
+        x = (x * 9973.0 + 0.377).fract();
+        x
+    };
+    let mut samples = Vec::new();
+    let mut points = Vec::new();
+    for k in 0..faces * 300 {
+        let (face, u, v) = (k % faces, next(), next());
+        points.extend_from_slice(&truth.evaluate(face, u, v));
+        let shifted =
+            fitter
+                .adjacency()
+                .wrap(face, u + 0.4 * (next() - 0.5), v + 0.4 * (next() - 0.5));
+        samples.push(shifted);
+    }
+    let fit = fitter.fit_parametric(&samples, &points, 0.0, 3).unwrap();
+    assert_eq!(fit.rounds.len(), 4);
+    let (first, last) = (fit.rounds[0], fit.rounds[3]);
+    assert!(first.rmse > 1e-3, "{first:?}");
+    assert!(last.rmse < 0.05 * first.rmse, "{first:?} -> {last:?}");
+    assert!(last.max < first.max, "{first:?} -> {last:?}");
+    // Corrected parameters are foot points: the residual is normal to the
+    // surface they were projected on.
+    let mut feet = fit.samples.clone();
+    correct_parameters(&fit.surface, fitter.adjacency(), &mut feet, &points);
+    for (s, p) in feet.iter().zip(points.chunks(3)).step_by(97) {
+        let [q, du, dv] = fit.surface.jet(s.face, s.u, s.v);
+        let r = DVec3::from_slice(p) - q;
+        let inside = s.u > 0.0 && s.u < 1.0 && s.v > 0.0 && s.v < 1.0;
+        if inside && r.length() > 1e-9 {
+            let n = du.cross(dv).normalize();
+            assert!(r.normalize().dot(n).abs() > 0.99, "{s:?}");
+        }
+    }
+}
+
+#[test]
+fn parametric_sampling_names_bad_points() {
+    let mesh = cube_sphere(1).unwrap();
+    let parametrisation = Parametrisation::parametric(&mesh).unwrap();
+    assert_eq!(
+        (parametrisation.kind(), parametrisation.dim()),
+        ("parametric", 3)
+    );
+    let (samples, values) = parametrisation
+        .sample_all(&[[2.0, 0.1, 0.0], [0.0, 0.0, -3.0]])
+        .unwrap();
+    assert_eq!((samples.len(), values.len()), (2, 6));
+    assert_eq!(&values[..3], &[2.0, 0.1, 0.0]);
+    assert!(matches!(
+        parametrisation.sample_all(&[[0.0, 0.0, 1.0], [0.0, f64::INFINITY, 0.0]]),
+        Err(SmoothError::NonFinitePoint { index: 1 })
+    ));
+}
+
+#[test]
+fn normals_of_a_fitted_surface_are_continuous_across_every_edge() {
+    // The unit sphere fitted in R^3 over the cube-sphere, whose eight
+    // valence-3 EVs make its edges G1 rather than C1: on both sides of every
+    // edge, the same point and the same unit normal.
+    let mesh = cube_sphere(1).unwrap();
+    let fitter = SmoothFitter::new(G1Domain::new(mesh).unwrap()).unwrap();
+    let surface = sphere_surface(&fitter);
+    let adjacency = fitter.adjacency();
+    let normal = |s: Sample| {
+        let [p, du, dv] = surface.jet(s.face, s.u, s.v);
+        (p, du.cross(dv).normalize())
+    };
+    let mut checked = 0;
+    for face in 0..fitter.domain.mesh.face_count() {
+        for a in [0.0, 0.13, 0.5, 0.71, 1.0] {
+            // Each side, and a step of 1e-13 past it into the neighbour.
+            for (u, v, du, dv) in [
+                (a, 0.0, 0.0, -1.0),
+                (1.0, a, 1.0, 0.0),
+                (a, 1.0, 0.0, 1.0),
+                (0.0, a, -1.0, 0.0),
+            ] {
+                let across = adjacency.wrap(face, u + 1e-13 * du, v + 1e-13 * dv);
+                assert_ne!(across.face, face);
+                let (p, n) = normal(Sample { face, u, v });
+                let (q, m) = normal(across);
+                assert!((p - q).length() < 1e-10, "face {face} ({u}, {v})");
+                assert!(
+                    n.dot(m) > 1.0 - 1e-9,
+                    "face {face} ({u}, {v}): {}",
+                    n.dot(m)
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 24 * 5 * 4);
+}
