@@ -463,6 +463,7 @@ fn smooth_fits_a_parametric_surface_over_a_mesh_in_space() {
     let cloud = path(dir.path(), "ball.xyz");
     std::fs::write(&cloud, sphere_xyz(8000, [0.5, 0.5, 0.5], 0.7)).unwrap();
     let out = path(dir.path(), "ball.ply");
+    let patches = path(dir.path(), "ball.json");
     let stdout = ok(shroud(&[
         "smooth",
         s(&cloud),
@@ -470,6 +471,8 @@ fn smooth_fits_a_parametric_surface_over_a_mesh_in_space() {
         s(&cube),
         "-o",
         s(&out),
+        "-o",
+        s(&patches),
     ]));
     assert!(stdout.contains("(parametric)"), "{stdout}");
     assert!(stdout.contains("refined once"), "{stdout}");
@@ -483,6 +486,17 @@ fn smooth_fits_a_parametric_surface_over_a_mesh_in_space() {
     let last = rmse_of(&stdout);
     assert!(last < first / 10.0 && last < 5e-4, "{stdout}");
     assert!(std::fs::read(&out).unwrap().starts_with(b"ply\n"));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&patches).unwrap()).unwrap();
+    assert_eq!(
+        (json["kind"].as_str(), json["dim"].as_u64()),
+        (Some("parametric"), Some(3))
+    );
+    assert_eq!(json["patches"][0].as_array().unwrap().len(), 36 * 3);
+    fails_with(
+        shroud(&["smooth", s(&cloud), "--mesh", s(&cube), "-o", "fit.stl"]),
+        "must be .json, .obj or .ply",
+    );
     // No corrections on request; a graph takes none.
     let stdout = ok(shroud(&[
         "smooth",

@@ -37,9 +37,9 @@ pub struct SmoothArgs {
     #[arg(long)]
     pub corrections: Option<usize>,
     /// Output: .json (patch coefficients, see core/FORMATS.md), or .obj / .ply
-    /// (the surface tessellated).
+    /// (the surface tessellated). Repeat for several: `-o fit.json -o fit.ply`.
     #[arg(short, long)]
-    pub output: Option<PathBuf>,
+    pub output: Vec<PathBuf>,
     /// Grid per patch of the tessellated output.
     #[arg(long, default_value_t = 16)]
     pub tessellation: usize,
@@ -218,6 +218,10 @@ fn fit(args: &SmoothArgs, input: &std::path::Path) -> Result<()> {
     let start = Instant::now();
     let (domain, parametrisation) = args.domain.load()?;
     let corrections = corrections(args.corrections, &parametrisation)?;
+    // A wrong extension is found before a long fit, not after.
+    for output in &args.output {
+        output_kind(output)?;
+    }
     let points = files::read_cloud(input)?;
     let xyz: Vec<[f64; 3]> = points.iter().map(|p| p.map(f64::from)).collect();
     let (samples, values) = parametrisation
@@ -261,9 +265,33 @@ fn fit(args: &SmoothArgs, input: &std::path::Path) -> Result<()> {
             d.min, d.max, d.rmse
         );
     }
-    match &args.output {
-        Some(output) => write_output(args, output, &mesh, &parametrisation, &fit.surface, e),
-        None => Ok(()),
+    for output in &args.output {
+        write_output(args, output, &mesh, &parametrisation, &fit.surface, e)?;
+    }
+    Ok(())
+}
+
+/// What an output path asks for, by its extension.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum OutputKind {
+    Patches,
+    Obj,
+    Ply,
+}
+
+fn output_kind(output: &std::path::Path) -> Result<OutputKind> {
+    let ext = output
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("json") => Ok(OutputKind::Patches),
+        Some("obj") => Ok(OutputKind::Obj),
+        Some("ply") => Ok(OutputKind::Ply),
+        _ => bail!(
+            "{}: the output must be .json, .obj or .ply",
+            output.display()
+        ),
     }
 }
 
@@ -345,18 +373,14 @@ fn write_output(
     surface: &SmoothSurface,
     e: FitErrors,
 ) -> Result<()> {
-    let ext = output
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
     let tessellated = || tessellate(surface, mesh, parametrisation, args.tessellation);
-    let bytes = match ext.as_deref() {
-        Some("obj") => write_obj(&tessellated()?),
-        Some("ply") => {
+    let bytes = match output_kind(output)? {
+        OutputKind::Obj => write_obj(&tessellated()?),
+        OutputKind::Ply => {
             let (vertices, quads) = tessellated()?.into_parts();
             TriangleMesh::from_quads(vertices, &quads).to_ply(false)
         }
-        Some("json") => serde_json::to_vec(&serde_json::json!({
+        OutputKind::Patches => serde_json::to_vec(&serde_json::json!({
             "format": "shroud-g1-patches",
             "version": 1,
             "degree": 5,
@@ -366,10 +390,6 @@ fn write_output(
             "patches": surface.coefficients.chunks(36 * surface.dim).collect::<Vec<_>>(),
             "errors": { "min": e.min, "max": e.max, "rmse": e.rmse },
         }))?,
-        _ => bail!(
-            "{}: the output must be .json, .obj or .ply",
-            output.display()
-        ),
     };
     files::write(output, &bytes)
 }
