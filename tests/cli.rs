@@ -568,3 +568,47 @@ fn smooth_fits_a_graph_over_a_rectangle_domain() {
         "outside the planar domain",
     );
 }
+
+#[test]
+fn limit_surface_clouds_fit_over_their_own_quad_mesh() {
+    // Paper 004, Section 6.2 in small: a cloud of the ring's Catmull-Clark
+    // limit surface, fitted in R^3 over the ring's quads.
+    let dir = tempfile::tempdir().unwrap();
+    let cloud = path(dir.path(), "ring.ply");
+    let quads = path(dir.path(), "ring.obj");
+    let stdout = ok(shroud(&[
+        "sim",
+        "limit-surface",
+        "--quads",
+        "ring",
+        "--points",
+        "30000",
+        "--write-quads",
+        s(&quads),
+        "-o",
+        s(&cloud),
+    ]));
+    assert!(
+        stdout.contains("30000 points of the limit surface of ring (32 quads)"),
+        "{stdout}"
+    );
+    let stdout = ok(shroud(&["smooth", s(&cloud), "--mesh", s(&quads)]));
+    assert!(stdout.contains("(parametric)"), "{stdout}");
+    // The ring is 3 x 3 x 1: errors small against its size.
+    assert!(rmse_of(&stdout) < 2e-3, "{stdout}");
+    fails_with(
+        shroud(&["sim", "limit-surface", "-o", s(&cloud)]),
+        "--quads",
+    );
+    fails_with(
+        shroud(&[
+            "sim",
+            "limit-surface",
+            "--quads",
+            "/nonexistent.obj",
+            "-o",
+            s(&cloud),
+        ]),
+        "cannot read",
+    );
+}
