@@ -425,21 +425,13 @@ fn smooth_fits_a_radial_function_over_the_sphere() {
 
 /// Points on the sphere of radius `r` around `c`, by a Fibonacci lattice.
 fn sphere_xyz(n: usize, c: [f64; 3], r: f64) -> String {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    let mut text = String::new();
-    for i in 0..n {
-        let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-        let s = (1.0 - z * z).sqrt();
-        let a = golden * i as f64;
-        let p = [s * a.cos(), s * a.sin(), z];
-        text += &format!(
-            "{} {} {}\n",
-            c[0] + r * p[0],
-            c[1] + r * p[1],
-            c[2] + r * p[2]
-        );
-    }
-    text
+    shroud_core::math::fibonacci_sphere(n)
+        .iter()
+        .map(|d| {
+            let p = glam::DVec3::from_array(c) + r * *d;
+            format!("{} {} {}\n", p.x, p.y, p.z)
+        })
+        .collect()
 }
 
 #[test]

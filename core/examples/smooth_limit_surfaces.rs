@@ -59,8 +59,14 @@ fn limit_cloud(control: &QuadMesh, count: usize, levels: usize) -> (Vec<Sample>,
     (samples, points)
 }
 
-fn refine(mesh: &QuadMesh, levels: usize) -> QuadMesh {
-    (0..levels).fold(mesh.clone(), |m, _| catmull_clark(&m).expect("refine"))
+/// The fitting domain: `mesh` refined `levels` (at least 1) times, so that its
+/// EVs are isolated and `G1Domain` keeps it as it is (the samples' faces
+/// refer to it).
+fn domain(mesh: &QuadMesh, levels: usize) -> G1Domain {
+    let refined = (0..levels).fold(mesh.clone(), |m, _| catmull_clark(&m).expect("refine"));
+    let domain = G1Domain::new(refined).expect("domain");
+    assert!(!domain.refined, "the samples' faces would not match");
+    domain
 }
 
 struct Run {
@@ -77,8 +83,7 @@ struct Run {
 fn run(control: &QuadMesh, levels: usize, count: usize) -> Run {
     let (samples, points) = limit_cloud(control, count, levels);
     let start = Instant::now();
-    let fitter =
-        SmoothFitter::new(G1Domain::new(refine(control, levels)).expect("domain")).expect("basis");
+    let fitter = SmoothFitter::new(domain(control, levels)).expect("basis");
     let basis_s = start.elapsed().as_secs_f64();
     let fit = fitter
         .fit_parametric(&samples, &points, 0.0, 3)
@@ -207,8 +212,7 @@ fn memory(control: &QuadMesh) {
     ];
     for (levels, count) in cases {
         let (samples, points) = limit_cloud(control, count, levels);
-        let fitter = SmoothFitter::new(G1Domain::new(refine(control, levels)).expect("domain"))
-            .expect("basis");
+        let fitter = SmoothFitter::new(domain(control, levels)).expect("basis");
         let nonzeros = fitter.normal_matrix_nonzeros();
         let (_, peak) = peak_during(|| {
             fitter

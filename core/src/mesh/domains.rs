@@ -43,6 +43,10 @@ pub fn hexagon_mesh() -> QuadMesh {
 /// regular grid: no extraordinary vertex, the G1 space is the C1 one).
 pub fn rectangle_mesh(lo: [f64; 2], hi: [f64; 2], n: u32) -> Result<QuadMesh, MeshError> {
     let n = n.max(1);
+    let count = (n as usize + 1).pow(2);
+    if count > u32::MAX as usize {
+        return Err(MeshError::TooManyVertices { count });
+    }
     let m = n + 1;
     let at = |i: u32, j: u32| {
         let (s, t) = (i as f64 / n as f64, j as f64 / n as f64);

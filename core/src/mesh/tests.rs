@@ -524,6 +524,11 @@ fn boundary_evs_of_any_valence_classify_and_count() {
         assert_eq!(c.vertices[0], VertexKind::BoundaryExtraordinary);
         assert_eq!(c.valences[0], kappa + 1);
         assert_eq!((c.n_bev, c.n_ee), (1, kappa - 1), "kappa {kappa}");
+        let basis = G1Basis::new(&domain).unwrap();
+        assert_eq!(basis.len(), domain.dimension().total(), "kappa {kappa}");
+        let rows = g1_constraints(&domain).unwrap();
+        let w: Vec<f64> = (0..basis.len()).map(|k| (k as f64 * 0.37).sin()).collect();
+        assert!(defect(&rows, &basis.combine(&w)) < 1e-10, "kappa {kappa}");
     }
 }
 

@@ -119,7 +119,7 @@ impl SmoothPatchesMessage {
         }
         let faces = msg.quads.len() / 16;
         let expected = faces * PATCH_COEFFICIENTS * msg.dim as usize;
-        if msg.dim == 0 || coefficients.len() != expected {
+        if coefficients.len() != expected {
             return Err(MessageError::Count {
                 field: "coefficients",
                 found: coefficients.len(),
@@ -141,6 +141,8 @@ impl SmoothPatchesMessage {
             "lambda, errors",
             &[msg.lambda, msg.error_min, msg.error_max, msg.error_rmse],
         )?;
+        check_finite("vertices", &vertices)?;
+        check_finite("coefficients", &coefficients)?;
         Ok(msg)
     }
 }
@@ -195,6 +197,9 @@ mod tests {
         assert!(SmoothPatchesMessage::from_bytes(&bad.to_bytes().unwrap()).is_err());
         let mut bad = msg.clone();
         bad.quads[0..4].copy_from_slice(&99u32.to_le_bytes());
+        assert!(SmoothPatchesMessage::from_bytes(&bad.to_bytes().unwrap()).is_err());
+        let mut bad = msg.clone();
+        bad.coefficients[0..8].copy_from_slice(&f64::NAN.to_le_bytes());
         assert!(SmoothPatchesMessage::from_bytes(&bad.to_bytes().unwrap()).is_err());
         let mut bad = msg;
         bad.error_max = f64::NAN;

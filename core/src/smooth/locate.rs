@@ -104,8 +104,8 @@ impl PlanarLocator {
     }
 }
 
-/// Whether `mesh` lies in the plane z = 0 (within 1e-9 of its size): a
-/// domain for graphs z(x, y).
+/// Whether `mesh` lies in the plane z = 0 (within 1e-9 of its size, or of 1
+/// for meshes smaller than that): a domain for graphs z(x, y).
 pub fn is_planar(mesh: &QuadMesh) -> bool {
     non_planar_vertex(mesh).is_none()
 }

@@ -59,13 +59,18 @@ fn parameters_past_a_side_continue_in_the_neighbour() {
             v: 0.2
         }
     );
-    // On a closed mesh every move ends inside some patch.
+    // On a closed mesh a move past a side lands strictly inside the
+    // neighbour, at the depth it went past (nothing is clamped).
     let sphere = cube_sphere(1).unwrap();
     let adjacency = PatchAdjacency::new(&sphere);
+    let inside = |t: f64| t > 0.0 && t < 1.0;
     for f in 0..sphere.face_count() {
-        for (u, v) in [(1.4, 0.5), (-0.4, -0.4), (0.5, 1.9)] {
+        for (u, v, depth) in [(1.4, 0.5, 0.4), (0.5, 1.9, 0.9), (-0.25, 0.3, 0.25)] {
             let s = adjacency.wrap(f, u, v);
-            assert!((0.0..=1.0).contains(&s.u) && (0.0..=1.0).contains(&s.v));
+            assert_ne!(s.face, f);
+            assert!(inside(s.u) && inside(s.v), "{f} ({u}, {v}): {s:?}");
+            let from_side = [s.v, 1.0 - s.u, 1.0 - s.v, s.u];
+            assert!(from_side.iter().any(|d| (d - depth).abs() < 1e-12), "{s:?}");
         }
     }
 }

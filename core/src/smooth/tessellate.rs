@@ -3,16 +3,13 @@
 //! radial surface or a parametric surface.
 
 use super::fit::SmoothSurface;
+use crate::mesh::{MeshError, QuadMesh};
 
 impl SmoothSurface {
     /// A graph surface (`dim` 1 over a planar domain) as a quad mesh: each
     /// patch sampled on an `n x n` grid, at the domain's bilinear position with
     /// the fitted value as height. Patches keep their own border vertices.
-    pub fn tessellate_graph(
-        &self,
-        domain: &crate::mesh::QuadMesh,
-        n: usize,
-    ) -> Result<crate::mesh::QuadMesh, crate::mesh::MeshError> {
+    pub fn tessellate_graph(&self, domain: &QuadMesh, n: usize) -> Result<QuadMesh, MeshError> {
         self.tessellate(domain, n, |mut p, value| {
             p[2] = value[0];
             p
@@ -22,11 +19,7 @@ impl SmoothSurface {
     /// A radial surface (`dim` 1 over a closed mesh around the origin, such as
     /// the cube-sphere) as a quad mesh: the fitted value is the distance from
     /// the origin along the domain point's direction.
-    pub fn tessellate_radial(
-        &self,
-        domain: &crate::mesh::QuadMesh,
-        n: usize,
-    ) -> Result<crate::mesh::QuadMesh, crate::mesh::MeshError> {
+    pub fn tessellate_radial(&self, domain: &QuadMesh, n: usize) -> Result<QuadMesh, MeshError> {
         self.tessellate(domain, n, |p, value| {
             let norm = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2])
                 .sqrt()
@@ -38,9 +31,9 @@ impl SmoothSurface {
     /// A parametric surface (`dim` 3) as a quad mesh: the fitted points.
     pub fn tessellate_parametric(
         &self,
-        domain: &crate::mesh::QuadMesh,
+        domain: &QuadMesh,
         n: usize,
-    ) -> Result<crate::mesh::QuadMesh, crate::mesh::MeshError> {
+    ) -> Result<QuadMesh, MeshError> {
         self.tessellate(domain, n, |_, value| {
             [0, 1, 2].map(|d| value.get(d).copied().unwrap_or(0.0))
         })
@@ -48,11 +41,18 @@ impl SmoothSurface {
 
     fn tessellate(
         &self,
-        domain: &crate::mesh::QuadMesh,
+        domain: &QuadMesh,
         n: usize,
         place: impl Fn([f64; 3], &[f64]) -> [f64; 3],
-    ) -> Result<crate::mesh::QuadMesh, crate::mesh::MeshError> {
+    ) -> Result<QuadMesh, MeshError> {
         let n = n.max(1);
+        let count = (n + 1)
+            .checked_pow(2)
+            .and_then(|per_face| per_face.checked_mul(domain.face_count()))
+            .unwrap_or(usize::MAX);
+        if count > u32::MAX as usize {
+            return Err(MeshError::TooManyVertices { count });
+        }
         let v = domain.vertices();
         let mut vertices = Vec::new();
         let mut quads = Vec::new();
@@ -78,6 +78,6 @@ impl SmoothSurface {
                 }
             }
         }
-        crate::mesh::QuadMesh::new(vertices, quads)
+        QuadMesh::new(vertices, quads)
     }
 }

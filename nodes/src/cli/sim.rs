@@ -11,8 +11,11 @@ use shroud_core::mesh::{
 use shroud_sim::Scene;
 use std::path::PathBuf;
 
-/// Refinements before sampling a limit surface (see `sample_limit_surface`).
+/// Refinements before sampling a limit surface (see `sample_limit_surface`):
+/// six, fewer on meshes so large that the refined mesh would pass a million
+/// faces.
 const LIMIT_DEPTH: usize = 6;
+const MAX_REFINED_FACES: usize = 1 << 20;
 
 #[derive(Debug, Args)]
 pub struct SimArgs {
@@ -52,7 +55,11 @@ fn limit_surface(args: &SimArgs) -> Result<()> {
         bail!("--points must be at least 1");
     }
     let mesh = quads(name)?;
-    let samples = sample_limit_surface(&mesh, args.points, args.seed, LIMIT_DEPTH)
+    let depth = (0..=LIMIT_DEPTH)
+        .take_while(|&d| mesh.face_count().saturating_mul(1 << (2 * d)) <= MAX_REFINED_FACES)
+        .last()
+        .unwrap_or(0);
+    let samples = sample_limit_surface(&mesh, args.points, args.seed, depth)
         .with_context(|| format!("cannot refine {name}"))?;
     let points: Vec<[f32; 3]> = samples.iter().map(|s| s.point.map(|x| x as f32)).collect();
     files::write_cloud(&args.output, &points)?;
@@ -83,6 +90,9 @@ fn quads(name: &str) -> Result<QuadMesh> {
 pub fn run(args: SimArgs) -> Result<()> {
     if args.scene == "limit-surface" {
         return limit_surface(&args);
+    }
+    if args.quads.is_some() || args.write_quads.is_some() {
+        bail!("--quads and --write-quads belong to the limit-surface scene");
     }
     let scene = match &args.config {
         Some(path) => {

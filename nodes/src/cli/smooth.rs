@@ -40,9 +40,9 @@ pub struct SmoothArgs {
     /// (the surface tessellated). Repeat for several: `-o fit.json -o fit.ply`.
     #[arg(short, long)]
     pub output: Vec<PathBuf>,
-    /// Grid per patch of the tessellated output.
-    #[arg(long, default_value_t = 16)]
-    pub tessellation: usize,
+    /// Grid per patch of the tessellated output (1 to 256).
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u16).range(1..=256))]
+    pub tessellation: u16,
 }
 
 /// The fitting domain, shared by `shroud smooth` and the `smooth` node.
@@ -103,15 +103,10 @@ pub enum DomainKind {
 }
 
 pub fn run(args: &SmoothArgs) -> Result<()> {
-    if args.input.is_none() && !args.info {
-        bail!("give an input cloud to fit, or --info");
-    }
-    if args.info {
-        info(&args.domain.domain()?.0)?;
-    }
     match &args.input {
         Some(input) => fit(args, input),
-        None => Ok(()),
+        None if args.info => info(&args.domain.domain()?.0),
+        None => bail!("give an input cloud to fit, or --info"),
     }
 }
 
@@ -216,7 +211,15 @@ fn info(domain: &G1Domain) -> Result<()> {
 
 fn fit(args: &SmoothArgs, input: &std::path::Path) -> Result<()> {
     let start = Instant::now();
+    anyhow::ensure!(
+        args.lambda.is_finite() && args.lambda >= 0.0,
+        "--lambda {} must be finite and >= 0",
+        args.lambda
+    );
     let (domain, parametrisation) = args.domain.load()?;
+    if args.info {
+        info(&domain)?;
+    }
     let corrections = corrections(args.corrections, &parametrisation)?;
     // A wrong extension is found before a long fit, not after.
     for output in &args.output {
@@ -373,7 +376,7 @@ fn write_output(
     surface: &SmoothSurface,
     e: FitErrors,
 ) -> Result<()> {
-    let tessellated = || tessellate(surface, mesh, parametrisation, args.tessellation);
+    let tessellated = || tessellate(surface, mesh, parametrisation, args.tessellation.into());
     let bytes = match output_kind(output)? {
         OutputKind::Obj => write_obj(&tessellated()?),
         OutputKind::Ply => {

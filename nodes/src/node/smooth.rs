@@ -97,9 +97,6 @@ fn serve(
     Ok(())
 }
 
-/// Decodes, fits and encodes one cloud. A malformed message is an error (the
-/// caller counts it); a cloud that cannot be fitted is logged and counted
-/// here, and gives `None`.
 /// What every cloud is fitted with.
 struct FitSetup<'a> {
     fitter: &'a SmoothFitter,
@@ -108,6 +105,9 @@ struct FitSetup<'a> {
     corrections: usize,
 }
 
+/// Decodes, fits and encodes one cloud. A malformed message is an error (the
+/// caller counts it); a cloud that cannot be fitted is logged and counted
+/// here, and gives `None`.
 fn fit_one(
     ctx: &NodeContext,
     setup: &FitSetup<'_>,
