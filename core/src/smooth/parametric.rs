@@ -112,4 +112,28 @@ impl SmoothFitter {
             distances,
         })
     }
+
+    /// As [`Self::fit_parametric`], with the samples first moved to their foot
+    /// points on `previous`, a fit of an earlier cloud of the same object over
+    /// this domain: a live stream's warm start, closer than the domain mesh's
+    /// stand-in surface, so fewer rounds reach the same error. A `previous`
+    /// of another space is ignored.
+    pub fn fit_parametric_warm(
+        &self,
+        previous: &SmoothSurface,
+        samples: &[Sample],
+        points: &[f64],
+        lambda: f64,
+        corrections: usize,
+    ) -> Result<ParametricFit, SmoothError> {
+        let same_space = previous.dim == 3
+            && previous.faces() == self.domain.mesh.face_count()
+            && previous.weights.len() == 3 * self.basis.len();
+        if !same_space || points.len() != 3 * samples.len() {
+            return self.fit_parametric(samples, points, lambda, corrections);
+        }
+        let mut warm = samples.to_vec();
+        correct_parameters(previous, self.adjacency(), &mut warm, points);
+        self.fit_parametric(&warm, points, lambda, corrections)
+    }
 }

@@ -238,8 +238,8 @@ fn fit(args: &SmoothArgs, input: &std::path::Path) -> Result<()> {
         &parametrisation,
         &samples,
         &values,
-        args.lambda,
-        corrections,
+        (args.lambda, corrections),
+        None,
     )
     .with_context(|| format!("cannot fit {}", input.display()))?;
     let seconds = start.elapsed().as_secs_f64();
@@ -328,17 +328,23 @@ impl FitRounds {
 }
 
 /// Fits `values` at `samples` as the parametrisation asks: parametric fits
-/// with `corrections` rounds of parameter correction.
+/// with `corrections` rounds of parameter correction, warm-started on `warm`
+/// (an earlier fit of the same object) when given.
 pub fn fit_samples(
     fitter: &SmoothFitter,
     parametrisation: &Parametrisation,
     samples: &[Sample],
     values: &[f64],
-    lambda: f64,
-    corrections: usize,
+    (lambda, corrections): (f64, usize),
+    warm: Option<&SmoothSurface>,
 ) -> Result<FitRounds, shroud_core::smooth::SmoothError> {
     if let Parametrisation::Parametric(_) = parametrisation {
-        let fit = fitter.fit_parametric(samples, values, lambda, corrections)?;
+        let fit = match warm {
+            Some(previous) => {
+                fitter.fit_parametric_warm(previous, samples, values, lambda, corrections)?
+            }
+            None => fitter.fit_parametric(samples, values, lambda, corrections)?,
+        };
         return Ok(FitRounds {
             surface: fit.surface,
             rounds: fit.rounds,

@@ -11,7 +11,7 @@ use crate::transport::{unix_ns, Mailbox};
 use anyhow::Result;
 use clap::Args;
 use shroud_core::message::{CloudView, SmoothFitReport, SmoothPatchesMessage, TopicKind};
-use shroud_core::smooth::{Parametrisation, SmoothFitter};
+use shroud_core::smooth::{Parametrisation, SmoothFitter, SmoothSurface};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use zenoh::bytes::ZBytes;
@@ -68,6 +68,9 @@ fn serve(
     let publisher = ctx.latest_publisher(&output)?;
     tracing::info!(%input, %output, functions = fitter.basis.len(), kind = parametrisation.kind(), "fitting");
     ctx.metrics.set("functions", fitter.basis.len() as f64);
+    // The last surface published: a parametric fit of the next cloud starts
+    // from it (fewer corrections for the same error on a steady object).
+    let mut previous: Option<SmoothSurface> = None;
     while !ctx.stopping() {
         ctx.metrics
             .set_counter("dropped_backlog", mailbox.dropped());
@@ -81,14 +84,17 @@ fn serve(
             lambda: args.lambda,
             corrections,
         };
-        match fit_one(&ctx, &setup, &payload) {
-            Ok(Some(bytes)) => match publisher.put(bytes).wait() {
-                Ok(()) => ctx.metrics.add("published", 1),
-                Err(e) => {
-                    ctx.metrics.add("publish_errors", 1);
-                    tracing::warn!("publish {output}: {e}");
+        match fit_one(&ctx, &setup, previous.as_ref(), &payload) {
+            Ok(Some((bytes, surface))) => {
+                previous = Some(surface);
+                match publisher.put(bytes).wait() {
+                    Ok(()) => ctx.metrics.add("published", 1),
+                    Err(e) => {
+                        ctx.metrics.add("publish_errors", 1);
+                        tracing::warn!("publish {output}: {e}");
+                    }
                 }
-            },
+            }
             Ok(None) => {}
             Err(e) => ctx.drop_malformed(&key, &e),
         }
@@ -105,14 +111,15 @@ struct FitSetup<'a> {
     corrections: usize,
 }
 
-/// Decodes, fits and encodes one cloud. A malformed message is an error (the
-/// caller counts it); a cloud that cannot be fitted is logged and counted
-/// here, and gives `None`.
+/// Decodes, fits and encodes one cloud, warm-started on `previous`. A
+/// malformed message is an error (the caller counts it); a cloud that cannot
+/// be fitted is logged and counted here, and gives `None`.
 fn fit_one(
     ctx: &NodeContext,
     setup: &FitSetup<'_>,
+    previous: Option<&SmoothSurface>,
     payload: &ZBytes,
-) -> Result<Option<Vec<u8>>, shroud_core::message::MessageError> {
+) -> Result<Option<(Vec<u8>, SmoothSurface)>, shroud_core::message::MessageError> {
     let FitSetup {
         fitter,
         parametrisation,
@@ -132,8 +139,8 @@ fn fit_one(
         parametrisation,
         &samples,
         &values,
-        lambda,
-        corrections,
+        (lambda, corrections),
+        previous,
     );
     let (surface, errors) = match fit {
         Ok(fit) => {
@@ -165,7 +172,6 @@ fn fit_one(
         errors,
         fit_ns,
     };
-    SmoothPatchesMessage::new(&fitter.domain.mesh, &surface, &report)
-        .to_bytes()
-        .map(Some)
+    let bytes = SmoothPatchesMessage::new(&fitter.domain.mesh, &surface, &report).to_bytes()?;
+    Ok(Some((bytes, surface)))
 }
