@@ -1,5 +1,7 @@
 //! End-to-end tests of the `shroud` binary: real processes, real files.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -440,18 +442,7 @@ fn smooth_fits_a_parametric_surface_over_a_mesh_in_space() {
     // A sphere (a closed surface, not a graph) over a coarse quad mesh of it:
     // the inscribed cube, refined once since its EVs touch.
     let cube = path(dir.path(), "cube.obj");
-    let a = 0.7 / 3f64.sqrt();
-    let corners: String = (0..8)
-        .map(|i| {
-            let c = |bit: usize| 0.5 + if i >> bit & 1 == 1 { a } else { -a };
-            format!("v {} {} {}\n", c(0), c(1), c(2))
-        })
-        .collect();
-    std::fs::write(
-        &cube,
-        corners + "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n",
-    )
-    .unwrap();
+    std::fs::write(&cube, common::inscribed_cube_obj()).unwrap();
     let cloud = path(dir.path(), "ball.xyz");
     std::fs::write(&cloud, sphere_xyz(8000, [0.5, 0.5, 0.5], 0.7)).unwrap();
     let out = path(dir.path(), "ball.ply");

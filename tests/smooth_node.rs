@@ -126,15 +126,7 @@ fn smooth_node_fits_the_terrain_and_survives_garbage() {
 fn smooth_node_fits_a_closed_surface_in_space() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = dir.path().join("cube.obj");
-    let a = 0.7 / 3f64.sqrt();
-    let mut obj: String = (0..8)
-        .map(|i| {
-            let c = |bit: usize| 0.5 + if i >> bit & 1 == 1 { a } else { -a };
-            format!("v {} {} {}\n", c(0), c(1), c(2))
-        })
-        .collect();
-    obj += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-    std::fs::write(&mesh, obj).unwrap();
+    std::fs::write(&mesh, common::inscribed_cube_obj()).unwrap();
     let endpoint = format!("tcp/127.0.0.1:{}", free_port());
     let session = hub(&endpoint);
     let ns = "e2e-smooth-ball";

@@ -199,3 +199,16 @@ pub fn unix_ns() -> u64 {
         .map(|d| d.as_nanos() as u64)
         .unwrap_or(0)
 }
+
+/// OBJ bytes of the cube inscribed in the sphere of radius 0.7 around
+/// (0.5, 0.5, 0.5): a coarse quad mesh of that ball, for parametric fits.
+pub fn inscribed_cube_obj() -> Vec<u8> {
+    let (vertices, faces) = shroud_core::mesh::cube_mesh().into_parts();
+    let a = 0.7 / 3f64.sqrt();
+    let scaled = vertices
+        .iter()
+        .map(|p| p.map(|x| 0.5 + (2.0 * x - 1.0) * a))
+        .collect();
+    let mesh = shroud_core::mesh::QuadMesh::new(scaled, faces).expect("a scaled cube");
+    shroud_core::mesh::write_obj(&mesh)
+}

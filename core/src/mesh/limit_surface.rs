@@ -83,6 +83,16 @@ pub fn refine_mesh(mesh: &QuadMesh, levels: usize) -> Result<QuadMesh, MeshError
     Ok(fine)
 }
 
+/// The most Catmull-Clark steps, up to `max_levels`, after which `mesh` has
+/// at most `max_faces` faces (each step multiplies them by four); 0 when
+/// even the mesh itself has more.
+pub fn levels_within(mesh: &QuadMesh, max_levels: usize, max_faces: usize) -> usize {
+    (0..=max_levels)
+        .take_while(|&k| mesh.face_count().saturating_mul(1 << (2 * k)) <= max_faces)
+        .last()
+        .unwrap_or(0)
+}
+
 /// The splitmix64 generator: tiny, deterministic and good enough for sampling.
 struct SplitMix64(u64);
 

@@ -28,8 +28,8 @@ pub use g1_basis::{BasisFunction, Feature, G1Basis};
 pub use g1_constraints::{defect, g1_constraints, Row, PATCH_COEFFICIENTS};
 pub use half_edge::HalfEdgeMesh;
 pub use limit_surface::{
-    child_parameters, coarsen_parameters, limit_point, limit_position, parent_parameters,
-    refine_mesh, refine_parameters, sample_limit_surface, LimitSample,
+    child_parameters, coarsen_parameters, levels_within, limit_point, limit_position,
+    parent_parameters, refine_mesh, refine_parameters, sample_limit_surface, LimitSample,
 };
 pub use obj::{parse_obj, write_obj, ObjError};
 pub use polycube::{l_block, polycube, ring_block, step_block};

@@ -25,6 +25,8 @@ pub enum SmoothError {
     },
     #[error("the least-squares system is singular: {points} points do not determine {functions} functions (add points or a smoothing weight lambda > 0)")]
     Underdetermined { points: usize, functions: usize },
+    #[error("parameter correction applies to parametric fits (a domain mesh in space); a {kind} fit has exact parameters")]
+    ExactParameters { kind: &'static str },
     #[error("invalid smoothing weight lambda = {0}: it must be finite and >= 0")]
     Lambda(f64),
     #[error("point {index} ({x}, {y}) is outside the planar domain")]

@@ -54,9 +54,17 @@ impl SmoothSurface {
 
     /// The surface's value on `face` at `(u, v)`.
     pub fn evaluate(&self, face: usize, u: f64, v: f64) -> Vec<f64> {
+        let mut out = vec![0.0; self.dim];
+        self.evaluate_into(face, u, v, &mut out);
+        out
+    }
+
+    /// As [`Self::evaluate`], into `out` (`dim` values): no allocation in
+    /// loops over many samples.
+    fn evaluate_into(&self, face: usize, u: f64, v: f64, out: &mut [f64]) {
         let (bu, bv) = (bernstein5(u), bernstein5(v));
         let base = face * PATCH_COEFFICIENTS;
-        let mut out = vec![0.0; self.dim];
+        out.fill(0.0);
         for j in 0..6 {
             for i in 0..6 {
                 let w = bu[i] * bv[j];
@@ -66,7 +74,6 @@ impl SmoothSurface {
                 }
             }
         }
-        out
     }
 
     /// Eq. (28): smallest, largest and root-mean-square distance between each
@@ -75,15 +82,18 @@ impl SmoothSurface {
         let dist: Vec<f64> = samples
             .par_iter()
             .enumerate()
-            .map(|(n, s)| {
-                let q = self.evaluate(s.face, s.u, s.v);
-                let p = &values[n * self.dim..(n + 1) * self.dim];
-                q.iter()
-                    .zip(p)
-                    .map(|(a, b)| (a - b) * (a - b))
-                    .sum::<f64>()
-                    .sqrt()
-            })
+            .map_init(
+                || vec![0.0; self.dim],
+                |q, (n, s)| {
+                    self.evaluate_into(s.face, s.u, s.v, q);
+                    let p = &values[n * self.dim..(n + 1) * self.dim];
+                    q.iter()
+                        .zip(p)
+                        .map(|(a, b)| (a - b) * (a - b))
+                        .sum::<f64>()
+                        .sqrt()
+                },
+            )
             .collect();
         if dist.is_empty() {
             return FitErrors::default();

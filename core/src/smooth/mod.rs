@@ -11,6 +11,7 @@
 mod bernstein;
 mod error;
 mod fit;
+mod fit_as;
 mod foot_point;
 mod locate;
 mod parametric;
@@ -28,6 +29,7 @@ mod tests;
 pub use bernstein::{bernstein5, bernstein5_derivative, bernstein5_jet};
 pub use error::SmoothError;
 pub use fit::{FitErrors, Sample, SmoothFitter, SmoothSurface};
+pub use fit_as::{FitRounds, DEFAULT_CORRECTIONS};
 pub use foot_point::{foot_point, BilinearPatches, PatchAdjacency, PatchSurface};
 pub use locate::{is_planar, PlanarLocator};
 pub use parametric::{correct_parameters, ParametricFit};

@@ -3,27 +3,12 @@
 
 use super::*;
 use crate::math::fibonacci_sphere;
-use crate::mesh::{catmull_clark, cube_mesh, sample_limit_surface, G1Domain, QuadMesh};
+use crate::mesh::{catmull_clark, cube_mesh, rectangle_mesh, sample_limit_surface, G1Domain};
 use glam::DVec3;
-
-/// A 3 x 3 grid of unit squares in z = 0.
-fn grid3() -> QuadMesh {
-    let v = |i: u32, j: u32| j * 4 + i;
-    let vertices = (0..16)
-        .map(|k| [(k % 4) as f64, (k / 4) as f64, 0.0])
-        .collect();
-    let faces = (0..9)
-        .map(|k| {
-            let (i, j) = (k % 3, k / 3);
-            [v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)]
-        })
-        .collect();
-    QuadMesh::new(vertices, faces).unwrap()
-}
 
 #[test]
 fn parameters_past_a_side_continue_in_the_neighbour() {
-    let mesh = grid3();
+    let mesh = rectangle_mesh([0.0; 2], [3.0; 2], 3).unwrap();
     let patches = BilinearPatches::new(&mesh);
     let adjacency = PatchAdjacency::new(&mesh);
     // From the centre square, moves past each side and past a corner land on

@@ -10,7 +10,9 @@
 use super::fit::Sample;
 use super::foot_point::{foot_point, BilinearPatches, PatchAdjacency, PatchSurface};
 use crate::cloud::NeighbourIndex;
-use crate::mesh::{coarsen_parameters, limit_position, refine_mesh, MeshError, QuadMesh};
+use crate::mesh::{
+    coarsen_parameters, levels_within, limit_position, refine_mesh, MeshError, QuadMesh,
+};
 use glam::DVec3;
 
 /// Starts tried per point: the foot point from the nearest centre can stop
@@ -32,10 +34,7 @@ pub struct SurfaceLocator {
 
 impl SurfaceLocator {
     pub fn new(mesh: &QuadMesh) -> Result<Self, MeshError> {
-        let levels = (0..=MAX_LEVELS)
-            .take_while(|&k| mesh.face_count() << (2 * k) <= MAX_STAND_IN_FACES)
-            .last()
-            .unwrap_or(0);
+        let levels = levels_within(mesh, MAX_LEVELS, MAX_STAND_IN_FACES);
         let fine = refine_mesh(mesh, levels)?;
         let limit = (0..fine.vertex_count())
             .map(|v| limit_position(&fine, v))

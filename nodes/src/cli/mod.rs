@@ -10,7 +10,7 @@ mod smooth;
 
 pub use blend::{points3, BlendShapeArgs};
 pub use fit::{certificate_line, SurrogateShapeArgs};
-pub use smooth::{corrections as smooth_corrections, fit_samples, SmoothDomainArgs};
+pub use smooth::SmoothDomainArgs;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};

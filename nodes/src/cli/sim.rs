@@ -6,7 +6,8 @@ use crate::files;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use shroud_core::mesh::{
-    l_block, parse_obj, ring_block, sample_limit_surface, step_block, write_obj, QuadMesh,
+    l_block, levels_within, parse_obj, ring_block, sample_limit_surface, step_block, write_obj,
+    QuadMesh,
 };
 use shroud_sim::Scene;
 use std::path::PathBuf;
@@ -55,10 +56,7 @@ fn limit_surface(args: &SimArgs) -> Result<()> {
         bail!("--points must be at least 1");
     }
     let mesh = quads(name)?;
-    let depth = (0..=LIMIT_DEPTH)
-        .take_while(|&d| mesh.face_count().saturating_mul(1 << (2 * d)) <= MAX_REFINED_FACES)
-        .last()
-        .unwrap_or(0);
+    let depth = levels_within(&mesh, LIMIT_DEPTH, MAX_REFINED_FACES);
     let samples = sample_limit_surface(&mesh, args.points, args.seed, depth)
         .with_context(|| format!("cannot refine {name}"))?;
     let points: Vec<[f32; 3]> = samples.iter().map(|s| s.point.map(|x| x as f32)).collect();

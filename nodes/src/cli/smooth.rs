@@ -12,7 +12,7 @@ use anyhow::{bail, Context, Result};
 use shroud_core::format::TriangleMesh;
 use shroud_core::mesh::{parse_obj, write_obj, G1Basis, G1Domain, QuadMesh};
 use shroud_core::smooth::{
-    cube_sphere, is_planar, FitErrors, Parametrisation, Sample, SmoothFitter, SmoothSurface,
+    cube_sphere, is_planar, FitErrors, Parametrisation, SmoothFitter, SmoothSurface,
 };
 use std::path::PathBuf;
 use std::time::Instant;
@@ -220,7 +220,7 @@ fn fit(args: &SmoothArgs, input: &std::path::Path) -> Result<()> {
     if args.info {
         info(&domain)?;
     }
-    let corrections = corrections(args.corrections, &parametrisation)?;
+    let corrections = parametrisation.corrections(args.corrections)?;
     // A wrong extension is found before a long fit, not after.
     for output in &args.output {
         output_kind(output)?;
@@ -233,15 +233,15 @@ fn fit(args: &SmoothArgs, input: &std::path::Path) -> Result<()> {
     let located = start.elapsed().as_secs_f64();
     let mesh = domain.mesh.clone();
     let fitter = SmoothFitter::new(domain).context("cannot build the G1 basis")?;
-    let fit = fit_samples(
-        &fitter,
-        &parametrisation,
-        &samples,
-        &values,
-        (args.lambda, corrections),
-        None,
-    )
-    .with_context(|| format!("cannot fit {}", input.display()))?;
+    let fit = fitter
+        .fit_as(
+            &parametrisation,
+            &samples,
+            &values,
+            (args.lambda, corrections),
+            None,
+        )
+        .with_context(|| format!("cannot fit {}", input.display()))?;
     let seconds = start.elapsed().as_secs_f64();
     println!(
         "fitted {} points ({}) with {} G1 functions on {} patches (lambda {}) in {seconds:.3} s (locating {located:.3} s)",
@@ -298,82 +298,6 @@ fn output_kind(output: &std::path::Path) -> Result<OutputKind> {
     }
 }
 
-/// The number of correction rounds: 3 by default for parametric fits; graphs
-/// and radial functions have exact parameters.
-pub fn corrections(asked: Option<usize>, parametrisation: &Parametrisation) -> Result<usize> {
-    match (asked, parametrisation) {
-        (None, Parametrisation::Parametric(_)) => Ok(3),
-        (Some(k), Parametrisation::Parametric(_)) => Ok(k),
-        (None | Some(0), _) => Ok(0),
-        (Some(_), p) => bail!(
-            "--corrections applies to parametric fits (a --mesh in space); a {} fit has exact parameters",
-            p.kind()
-        ),
-    }
-}
-
-/// A fit and the errors of each round (one unless corrected).
-pub struct FitRounds {
-    pub surface: SmoothSurface,
-    pub rounds: Vec<FitErrors>,
-    /// For parametric fits: the distances at the foot points.
-    pub distances: Option<FitErrors>,
-}
-
-impl FitRounds {
-    /// The errors of the last round.
-    pub fn errors(&self) -> FitErrors {
-        self.rounds.last().copied().unwrap_or_default()
-    }
-}
-
-/// Fits `values` at `samples` as the parametrisation asks: parametric fits
-/// with `corrections` rounds of parameter correction, warm-started on `warm`
-/// (an earlier fit of the same object) when given.
-pub fn fit_samples(
-    fitter: &SmoothFitter,
-    parametrisation: &Parametrisation,
-    samples: &[Sample],
-    values: &[f64],
-    (lambda, corrections): (f64, usize),
-    warm: Option<&SmoothSurface>,
-) -> Result<FitRounds, shroud_core::smooth::SmoothError> {
-    if let Parametrisation::Parametric(_) = parametrisation {
-        let fit = match warm {
-            Some(previous) => {
-                fitter.fit_parametric_warm(previous, samples, values, lambda, corrections)?
-            }
-            None => fitter.fit_parametric(samples, values, lambda, corrections)?,
-        };
-        return Ok(FitRounds {
-            surface: fit.surface,
-            rounds: fit.rounds,
-            distances: Some(fit.distances),
-        });
-    }
-    let surface = fitter.fit(samples, values, 1, lambda)?;
-    let rounds = vec![surface.errors(samples, values)];
-    Ok(FitRounds {
-        surface,
-        rounds,
-        distances: None,
-    })
-}
-
-/// The surface tessellated as the parametrisation places its values.
-pub fn tessellate(
-    surface: &SmoothSurface,
-    mesh: &QuadMesh,
-    parametrisation: &Parametrisation,
-    n: usize,
-) -> Result<QuadMesh, shroud_core::mesh::MeshError> {
-    match parametrisation {
-        Parametrisation::Graph(_) => surface.tessellate_graph(mesh, n),
-        Parametrisation::Radial(_) => surface.tessellate_radial(mesh, n),
-        Parametrisation::Parametric(_) => surface.tessellate_parametric(mesh, n),
-    }
-}
-
 fn write_output(
     args: &SmoothArgs,
     output: &std::path::Path,
@@ -382,7 +306,7 @@ fn write_output(
     surface: &SmoothSurface,
     e: FitErrors,
 ) -> Result<()> {
-    let tessellated = || tessellate(surface, mesh, parametrisation, args.tessellation.into());
+    let tessellated = || parametrisation.tessellate(surface, mesh, args.tessellation.into());
     let bytes = match output_kind(output)? {
         OutputKind::Obj => write_obj(&tessellated()?),
         OutputKind::Ply => {

@@ -6,7 +6,7 @@
 //! Points outside the domain are skipped and counted.
 
 use super::runtime::{run_node, NodeCommon, NodeContext};
-use crate::cli::{fit_samples, smooth_corrections, SmoothDomainArgs};
+use crate::cli::SmoothDomainArgs;
 use crate::transport::{unix_ns, Mailbox};
 use anyhow::Result;
 use clap::Args;
@@ -43,7 +43,7 @@ pub fn run(args: SmoothNodeArgs) -> Result<()> {
         "--lambda must be finite and >= 0"
     );
     let (domain, parametrisation) = args.domain.load()?;
-    let corrections = smooth_corrections(args.corrections, &parametrisation)?;
+    let corrections = parametrisation.corrections(args.corrections)?;
     let fitter = SmoothFitter::new(domain)?;
     let common = args.common.clone();
     run_node(&common, "smooth", move |ctx| {
@@ -134,8 +134,7 @@ fn fit_one(
     let xyz: Vec<[f64; 3]> = points.iter().map(|p| p.map(f64::from)).collect();
     let (samples, values, outside) = parametrisation.sample_inside(&xyz);
     ctx.metrics.add("points_outside", outside as u64);
-    let fit = fit_samples(
-        fitter,
+    let fit = fitter.fit_as(
         parametrisation,
         &samples,
         &values,
