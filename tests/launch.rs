@@ -4,8 +4,10 @@
 
 mod common;
 
-use common::{alive, assert_all_gone, client_of, Proc};
+use common::{alive, assert_all_gone, client_of, joint_spread, KillOnDrop, Proc, Reaped};
 use shroud_core::message::{CollisionMessage, SurrogateMessage};
+use std::io::{BufRead, BufReader};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 use zenoh::Wait;
 
@@ -101,6 +103,63 @@ fn a_killed_launcher_leaves_no_orphan() {
     launcher.signal(libc::SIGKILL);
     launcher.wait_exit(LONG);
     assert_all_gone(&pids, Duration::from_secs(10));
+}
+
+/// The launcher killed outright while its parent does not reap it (it stays a
+/// zombie, as under a shell script busy elsewhere): its nodes stop all the same.
+/// Repeated, since whether they did used to depend on a race.
+#[test]
+fn a_killed_unreaped_launcher_leaves_no_live_node() {
+    for round in 0..8 {
+        let dir = tempfile::tempdir().unwrap();
+        let namespace = format!("e2e-zombie-{round}");
+        let file = write_launch(dir.path(), &GRAPH.replace("NS", &namespace));
+        let launcher = Proc::start(&["launch", &file]);
+        let nodes = KillOnDrop(pids_of(&launcher, &["scanner", "fit"]));
+        // Both nodes running: the fitter has certified the scanner's cloud.
+        launcher.expect_line("certified 2000 pts", LONG);
+        launcher.signal(libc::SIGKILL);
+        assert_all_gone(&nodes.0, Duration::from_secs(10));
+        assert!(
+            std::path::Path::new(&format!("/proc/{}", launcher.pid())).exists(),
+            "the launcher is still unreaped"
+        );
+    }
+}
+
+/// A node whose stdout and stderr readers are gone (as when its launcher died)
+/// stops on SIGTERM: its stop log line used to panic on EPIPE before the stop
+/// flag was set, leaving the runtime waiting forever for the looping body.
+#[test]
+fn a_node_without_output_readers_stops_on_sigterm() {
+    for round in 0..3 {
+        let namespace = format!("e2e-nopipe-{round}");
+        let mut node = Reaped(
+            Command::new(env!("CARGO_BIN_EXE_shroud"))
+                .args(["--log", "info", "node", "scanner", "--points", "2000"])
+                .args(["--rate", "10", "--stream", "s", "--multicast", "off"])
+                .args(["--namespace", &namespace])
+                .stdin(Stdio::null())
+                .stdout(Stdio::piped())
+                .stderr(Stdio::piped())
+                .spawn()
+                .expect("the shroud binary starts"),
+        );
+        // The body is looping once it logs "scanning"; then close both readers.
+        let stderr = BufReader::new(node.0.stderr.take().unwrap());
+        let mut lines = stderr.lines().map_while(Result::ok);
+        assert!(lines.any(|l| l.contains("scanning")), "the scanner starts");
+        drop(lines);
+        drop(node.0.stdout.take());
+        unsafe {
+            libc::kill(node.0.id() as i32, libc::SIGTERM);
+        }
+        let status = node.wait_timeout(Duration::from_secs(20));
+        assert!(
+            status.is_some_and(|s| s.success()),
+            "round {round}: {status:?}"
+        );
+    }
 }
 
 #[test]
@@ -232,34 +291,6 @@ fn wait_collision(
     }
 }
 
-/// The joint positions the arm publishes over `window`.
-fn joint_spread(
-    sub: &zenoh::pubsub::Subscriber<zenoh::handlers::FifoChannelHandler<zenoh::sample::Sample>>,
-    window: Duration,
-) -> f64 {
-    let _ = sub.drain().count();
-    let start = Instant::now();
-    let mut seen: Vec<Vec<f64>> = Vec::new();
-    while start.elapsed() < window {
-        if let Ok(Some(s)) = sub.recv_timeout(Duration::from_millis(50)) {
-            seen.push(
-                shroud_core::message::JointStateMessage::from_bytes(&s.payload().to_bytes())
-                    .unwrap()
-                    .positions,
-            );
-        }
-    }
-    assert!(seen.len() >= 3, "joint states keep coming");
-    seen.windows(2)
-        .map(|w| {
-            w[0].iter()
-                .zip(&w[1])
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max)
-        })
-        .fold(0.0, f64::max)
-}
-
 /// The guard clears the arm over a distant cloud, and stops it when a cloud is
 /// injected across its path; the halted arm then stops moving.
 #[test]
@@ -280,7 +311,7 @@ args = ["--input", "inj", "--grid", "8x8"]
 [[node]]
 name = "guard"
 run = "guard"
-args = ["--arm-file", "{arm_file}", "--surrogate", "inj", "--max-age", "5"]
+args = ["--arm-file", "{arm_file}", "--surrogate", "inj", "--max-age", "5", "--unobserved", "ignore"]
 [[node]]
 name = "arm"
 run = "arm"

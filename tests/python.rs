@@ -140,5 +140,8 @@ fn python_decodes_what_the_nodes_send() {
         assert_eq!(l["grid"], serde_json::json!([8, 10]), "rows x cols");
         assert_eq!(l["checked"], 2000);
         assert_eq!(l["violations"], 0);
+        // The fit node's own clock measured the cloud's time in the pipeline.
+        let pipeline_ms = l["pipeline_ms"].as_f64().unwrap();
+        assert!(pipeline_ms > 0.0 && pipeline_ms < 10_000.0, "{pipeline_ms}");
     }
 }

@@ -1,10 +1,14 @@
 //! Criterion benchmarks of the collision guard (`cargo bench -p shroud-core
 //! --bench guard`): building the envelope of a 20x20 sandwich of the 30K-point
 //! moving-spheres scene, and checking the demo arm (50 spheres, from
-//! `launch/arms/demo_arm.toml`) against it in poses far from and near the clouds.
+//! `launch/arms/demo_arm.toml`) against it in poses far from and near the clouds,
+//! and the whole decision ([`CollisionGuard::decide`]) over one view and over
+//! three (top, front, side sandwiches of the same cloud).
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use shroud_core::guard::{check_arm, ArmFile, Envelope};
+use shroud_core::guard::{
+    check_arm, ArmFile, CollisionGuard, Envelope, GuardPolicy, SurrogateInput, UnobservedPolicy,
+};
 use shroud_core::surrogate::{fit_surrogate, FitOptions, Sides};
 use std::hint::black_box;
 
@@ -50,6 +54,56 @@ fn guard(c: &mut Criterion) {
                 let pose = file.arm.forward(black_box(&q))?;
                 check_arm(&envelope, &pose, &file.guard)
             })
+        });
+    }
+    group.finish();
+    views(c, &points, &file);
+}
+
+/// The decision over 1 and 3 views, in the pose over the larger sphere (every
+/// view is checked; none short-circuits).
+fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
+    let directions = [[0.0, 0.0, -1.0], [0.0, -1.0, 0.0], [-1.0, 0.0, 0.0]];
+    let inputs: Vec<SurrogateInput> = directions
+        .iter()
+        .map(|&direction| {
+            let options = FitOptions {
+                direction,
+                sides: Sides::Sandwich,
+                ..FitOptions::default()
+            };
+            let surrogate = fit_surrogate(points, &options).expect("the scene fits");
+            SurrogateInput {
+                envelope: Envelope::new(&surrogate).expect("a valid surrogate"),
+                stamp_ns: 0,
+                sequence: 0,
+                pipeline_ns: 0,
+            }
+        })
+        .collect();
+    let pose = file.arm.forward(&OVER).expect("valid joint values");
+    let links: Vec<String> = file.arm.links().iter().map(|l| l.name.clone()).collect();
+    let policy = GuardPolicy {
+        max_skew_ns: u64::MAX,
+        unobserved: UnobservedPolicy::Ignore,
+        ..GuardPolicy::default()
+    };
+    let mut group = c.benchmark_group("guard_views");
+    for count in [1, 3] {
+        let names = (0..count).map(|i| format!("view{i}")).collect();
+        let mut guard =
+            CollisionGuard::new(names, links.clone(), policy, file.guard).expect("valid settings");
+        for (view, input) in inputs.iter().take(count).enumerate() {
+            guard.accept(view, input.clone(), 0, 0).expect("fresh");
+        }
+        let decision = guard.decide(&pose.shapes, 0).expect("valid pose");
+        eprintln!(
+            "{count} view(s): {:?}, min clearance {:.4}",
+            decision.verdict,
+            decision.report.as_ref().map_or(0.0, |r| r.min_clearance)
+        );
+        group.bench_function(format!("decide_50_spheres_{count}_views"), |b| {
+            b.iter(|| guard.decide(black_box(&pose.shapes), 0))
         });
     }
     group.finish();

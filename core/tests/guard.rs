@@ -262,6 +262,7 @@ mod guard {
             stop_distance: 0.3,
             max_report: 1.0,
             refine_depth: 4,
+            max_obstacle_speed: 0.0,
         };
         let mut rng = Pcg64::seed_from_u64(9);
         let mut ratios = Vec::new();
@@ -334,6 +335,7 @@ mod guard {
             stop_distance: 0.05,
             max_report: 1.0,
             refine_depth: 4,
+            max_obstacle_speed: 0.0,
         };
         let mut positive = 0;
         let mut rng = Pcg64::seed_from_u64(1);
@@ -524,7 +526,7 @@ mod guard {
             let pts = in_domain(&sur, &points_f64(&c.points));
             let mut rng = Pcg64::seed_from_u64(seed ^ 0x5EED);
             let (shapes, size) = random_shapes(&sur, &pts, 60, &mut rng);
-            let cfg = GuardConfig { stop_distance: 0.02 * size, max_report: 0.3 * size, refine_depth: depth };
+            let cfg = GuardConfig { stop_distance: 0.02 * size, max_report: 0.3 * size, refine_depth: depth, max_obstacle_speed: 0.0 };
             let report = check_shapes(&env, &shapes, 1, &cfg).unwrap();
             assert_conservative(&shapes, &report, &pts, &format!("{kind:?}"));
         }
@@ -580,6 +582,7 @@ mod guard {
                 stop_distance: 0.02 * size,
                 max_report: 0.3 * size,
                 refine_depth: 3,
+                max_obstacle_speed: 0.0,
             };
             let report = check_shapes(&env, &shapes, 1, &cfg).unwrap();
             let t = assert_conservative(&shapes, &report, &pts, &format!("{kind:?}"));
@@ -621,5 +624,135 @@ mod guard {
         assert!(total.hits * 20 > total.shapes, "{total:?}");
         assert!(total.positive * 2 > total.shapes, "{total:?}");
         assert!((10..55).contains(&stops), "{stops} of 60 poses stop");
+    }
+
+    /// Largest speed of a Lissajous path: `|d/dt a sin(w t + p)| <= a w` per axis.
+    fn speed_bound(path: &shroud_sim::LissajousPath) -> f64 {
+        path.amplitude
+            .iter()
+            .zip(&path.angular_speed)
+            .map(|(a, w)| (a * w).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    }
+
+    /// The cloud taken at `t0`, each point carried along with its sphere to
+    /// `t1`: the scene as it is when the guard decides (the simulator knows it).
+    fn moved_cloud(
+        scene: &shroud_sim::MovingSpheres,
+        points: &[[f32; 3]],
+        t0: f64,
+        t1: f64,
+    ) -> Vec<DVec3> {
+        let (c0, c1) = (scene.centres(t0), scene.centres(t1));
+        let first = scene.counts()[0];
+        points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let k = usize::from(i >= first);
+                let shift = DVec3::from_array(c1[k]) - DVec3::from_array(c0[k]);
+                DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) + shift
+            })
+            .collect()
+    }
+
+    /// The whole decision over one to three views of the moving spheres, taken
+    /// at `t0` and judged at `t1` with the scene's true speed bound: every
+    /// combined clearance is at most the shape's distance to the scene at
+    /// `t1`, and a `clear` never hides a shape within the stop distance of it.
+    /// Counted, so that the test cannot pass by never clearing.
+    #[test]
+    fn views_and_motion_allowance_are_never_optimistic() {
+        use shroud_core::guard::{CollisionGuard, GuardPolicy, SurrogateInput, UnobservedPolicy};
+        use shroud_core::message::GuardVerdict;
+        let file = demo_arm();
+        let directions = [[0.0, 0.0, -1.0], [0.0, -1.0, 0.0], [-1.0, 0.0, 0.0]];
+        let (mut clears, mut stops, mut hits, mut unobserved) = (0, 0, 0, 0);
+        for seed in 0..6u64 {
+            let scene = shroud_sim::MovingSpheres {
+                points: 15_000,
+                seed,
+                ..Default::default()
+            };
+            let speed = scene.paths.iter().map(speed_bound).fold(0.0, f64::max);
+            let t0 = seed as f64 * 1.7;
+            let points = scene.generate(t0).unwrap();
+            let views: Vec<SurrogateInput> = directions
+                .iter()
+                .map(|&d| SurrogateInput {
+                    envelope: Envelope::new(&fit(&points, Sides::Sandwich, d, 16).unwrap())
+                        .unwrap(),
+                    stamp_ns: 0,
+                    sequence: seed,
+                    pipeline_ns: 20_000_000,
+                })
+                .collect();
+            let mut rng = Pcg64::seed_from_u64(seed);
+            for count in 1..=3 {
+                let age_s = rng.random_range(0.0..0.12);
+                let truth = moved_cloud(&scene, &points, t0, t0 + 0.02 + age_s);
+                let config = GuardConfig {
+                    max_report: 0.6,
+                    max_obstacle_speed: speed,
+                    ..file.guard
+                };
+                // Every point of the cloud lies in every view's domain, so the
+                // bounds hold for every shape; unobserved space is about what
+                // the cloud does not hold, which this scene has none of.
+                let policy = GuardPolicy {
+                    max_skew_ns: u64::MAX,
+                    unobserved: UnobservedPolicy::Ignore,
+                    ..GuardPolicy::default()
+                };
+                let names = (0..count).map(|i| format!("v{i}")).collect();
+                let links = file.arm.links().iter().map(|l| l.name.clone()).collect();
+                let mut guard = CollisionGuard::new(names, links, policy, config).unwrap();
+                for (v, input) in views.iter().take(count).enumerate() {
+                    guard.accept(v, input.clone(), 0, 0).unwrap();
+                }
+                for k in 0..20 {
+                    // Half anywhere (mostly into the clouds), half near the
+                    // folded-up pose above them (mostly clear).
+                    let q: Vec<f64> = if k % 2 == 0 {
+                        random_joints(&file.arm, &mut rng)
+                    } else {
+                        [0.0, 1.2, 2.2, 1.0, 0.0, 0.0]
+                            .iter()
+                            .map(|q| q + rng.random_range(-0.3..0.3))
+                            .collect()
+                    };
+                    let pose = file.arm.forward(&q).unwrap();
+                    let d = guard.decide(&pose.shapes, (age_s * 1e9) as u64).unwrap();
+                    let report = d.report.as_ref().unwrap();
+                    for (shape, result) in pose.shapes.iter().zip(&report.shapes) {
+                        let closest = truth
+                            .iter()
+                            .map(|p| shape.shape.distance_to(*p))
+                            .fold(f64::INFINITY, f64::min);
+                        hits += usize::from(closest <= 0.0);
+                        assert!(
+                            result.clearance <= closest.max(0.0),
+                            "{count} views: clearance {} but the scene is {closest} away",
+                            result.clearance
+                        );
+                        if d.verdict == GuardVerdict::Clear {
+                            assert!(
+                                closest >= config.stop_distance,
+                                "clear with a shape {closest} m from the scene"
+                            );
+                        }
+                    }
+                    clears += usize::from(d.verdict == GuardVerdict::Clear);
+                    stops += usize::from(d.verdict == GuardVerdict::Stop);
+                    unobserved += usize::from(d.verdict == GuardVerdict::Unobserved);
+                }
+            }
+        }
+        eprintln!("{clears} clear, {stops} stop, {unobserved} unobserved, {hits} shapes inside the moved scene");
+        assert!(
+            clears >= 30 && stops >= 50 && hits >= 100,
+            "{clears} clear, {stops} stop, {hits} hits"
+        );
     }
 }

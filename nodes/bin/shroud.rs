@@ -5,16 +5,28 @@ use clap::Parser;
 use shroud_nodes::cli::{run, Cli};
 use std::process::ExitCode;
 
-#[global_allocator]
-static ALLOCATOR: shroud_nodes::bench::CountingAllocator = shroud_nodes::bench::CountingAllocator;
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let filter = tracing_subscriber::EnvFilter::try_new(&cli.log)
-        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("warn"));
+    // `--log` wins over RUST_LOG; a filter that does not parse is an error,
+    // not a silent fallback.
+    let (source, text) = match (&cli.log, std::env::var("RUST_LOG")) {
+        (Some(log), _) => ("--log", log.clone()),
+        (None, Ok(env)) if !env.is_empty() => ("RUST_LOG", env),
+        _ => ("default", "warn".to_string()),
+    };
+    let filter = match tracing_subscriber::EnvFilter::try_new(&text) {
+        Ok(filter) => filter,
+        Err(e) => {
+            eprintln!("error: invalid log filter {text:?} from {source}: {e}");
+            return ExitCode::from(2);
+        }
+    };
     // Colour only on a terminal: a launcher reading a child's pipe wants plain text.
+    // A log line that cannot be written (a closed pipe) is dropped, not
+    // reported with `eprintln!`, which would panic on the same broken stderr.
     tracing_subscriber::fmt()
         .with_env_filter(filter)
+        .log_internal_errors(false)
         .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
         .with_writer(std::io::stderr)
         .init();

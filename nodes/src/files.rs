@@ -66,3 +66,11 @@ fn is_json(path: &Path, bytes: &[u8]) -> bool {
     path.extension().is_some_and(|e| e == "json")
         || bytes.iter().find(|b| !b.is_ascii_whitespace()) == Some(&b'{')
 }
+
+/// A scene configuration file (JSON, `shroud_sim::Scene` with its `"kind"`
+/// tag; missing fields take their defaults).
+pub fn read_scene_config(path: &Path) -> Result<shroud_sim::Scene> {
+    let text = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    serde_json::from_slice::<shroud_sim::Scene>(&text)
+        .with_context(|| format!("bad scene configuration {}", path.display()))
+}

@@ -212,3 +212,83 @@ pub fn inscribed_cube_obj() -> Vec<u8> {
     let mesh = shroud_core::mesh::QuadMesh::new(scaled, faces).expect("a scaled cube");
     shroud_core::mesh::write_obj(&mesh)
 }
+
+/// Kills these pids (SIGKILL) when dropped, if still alive: a failed test must
+/// not leave nodes behind, and a launcher's nodes are in their own process
+/// groups, out of reach of the launcher's.
+pub struct KillOnDrop(pub Vec<i32>);
+
+impl Drop for KillOnDrop {
+    fn drop(&mut self) {
+        for &pid in self.0.iter().filter(|&&p| alive(p)) {
+            unsafe {
+                libc::kill(pid, libc::SIGKILL);
+            }
+        }
+    }
+}
+
+/// A child process killed and reaped when dropped, for tests that handle its
+/// pipes themselves.
+pub struct Reaped(pub Child);
+
+impl Reaped {
+    /// Waits for exit; None if it takes longer than `timeout`.
+    pub fn wait_timeout(&mut self, timeout: Duration) -> Option<std::process::ExitStatus> {
+        let deadline = Instant::now() + timeout;
+        while Instant::now() < deadline {
+            if let Some(status) = self.0.try_wait().expect("try_wait") {
+                return Some(status);
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        None
+    }
+}
+
+impl Drop for Reaped {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// A subscriber with a FIFO of its samples.
+pub type Inbox =
+    zenoh::pubsub::Subscriber<zenoh::handlers::FifoChannelHandler<zenoh::sample::Sample>>;
+
+/// Subscribes the test's session to `key`.
+pub fn inbox(session: &zenoh::Session, key: String) -> Inbox {
+    session
+        .declare_subscriber(key)
+        .wait()
+        .expect("test subscriber")
+}
+
+/// Largest change between consecutive joint states seen over `window`.
+pub fn joint_spread(joints: &Inbox, window: Duration) -> f64 {
+    let spread = joint_spread_if_any(joints, window);
+    assert!(spread.is_some(), "joint states keep coming");
+    spread.unwrap_or_default()
+}
+
+/// [`joint_spread`], or `None` when fewer than three joint states came.
+pub fn joint_spread_if_any(joints: &Inbox, window: Duration) -> Option<f64> {
+    let _ = joints.drain().count();
+    let start = Instant::now();
+    let mut seen: Vec<Vec<f64>> = Vec::new();
+    while start.elapsed() < window {
+        if let Ok(Some(s)) = joints.recv_timeout(Duration::from_millis(20)) {
+            let bytes = s.payload().to_bytes();
+            let msg = shroud_core::message::JointStateMessage::from_bytes(&bytes);
+            seen.push(msg.expect("valid joint states").positions);
+        }
+    }
+    let step = |w: &[Vec<f64>]| {
+        w[0].iter()
+            .zip(&w[1])
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+    };
+    (seen.len() >= 3).then(|| seen.windows(2).map(step).fold(0.0, f64::max))
+}

@@ -1,5 +1,6 @@
 //! How the guard judges clearances: the stop threshold, the largest clearance
-//! worth computing exactly, and how deep near cells are subdivided.
+//! worth computing exactly, how deep near cells are subdivided, and how fast
+//! obstacles may move.
 
 use super::error::GuardError;
 use serde::{Deserialize, Serialize};
@@ -22,6 +23,10 @@ pub struct GuardConfig {
     /// shape is known to be clear of `stop_distance` or not. Clearances below
     /// `stop_distance` are therefore valid lower bounds but not the tightest.
     pub refine_depth: u32,
+    /// Bound on the speed of anything in the scene (m/s, `>= 0`): the guard
+    /// reduces a surrogate's clearances by this times the surrogate's age, so
+    /// that a stop is decided against where an obstacle can be now.
+    pub max_obstacle_speed: f64,
 }
 
 impl Default for GuardConfig {
@@ -30,6 +35,7 @@ impl Default for GuardConfig {
             stop_distance: 0.05,
             max_report: 0.2,
             refine_depth: 3,
+            max_obstacle_speed: 0.0,
         }
     }
 }
@@ -53,6 +59,12 @@ impl GuardConfig {
             return bad(format!(
                 "max_report ({}) must be >= stop_distance ({})",
                 self.max_report, self.stop_distance
+            ));
+        }
+        if !(self.max_obstacle_speed.is_finite() && self.max_obstacle_speed >= 0.0) {
+            return bad(format!(
+                "max_obstacle_speed must be finite and >= 0, got {}",
+                self.max_obstacle_speed
             ));
         }
         if self.refine_depth > MAX_REFINE_DEPTH {
@@ -83,6 +95,8 @@ mod tests {
         assert!(with(|c| c.max_report = f64::INFINITY).is_err());
         assert!(with(|c| c.max_report = 0.01).is_err());
         assert!(with(|c| c.refine_depth = MAX_REFINE_DEPTH + 1).is_err());
+        assert!(with(|c| c.max_obstacle_speed = -1.0).is_err());
+        assert!(with(|c| c.max_obstacle_speed = f64::INFINITY).is_err());
         assert!(with(|c| c.stop_distance = 0.0).is_ok());
     }
 }

@@ -16,6 +16,11 @@
 //!   to the cloud (0 when they may touch), per link the minimum, and `stop`
 //!   below [`GuardConfig::stop_distance`].
 //!
+//! - [`CollisionGuard`]: the decision as a state machine over several views
+//!   (surrogate streams): freshness on the guard's own clock, stamp skew,
+//!   motion allowance, unobserved space ([`GuardPolicy`]).
+//! - [`Deadman`]: a verdict consumer's rule for when it may move.
+//!
 //! The guard answers for the surrogate's domain only: points outside it (or in
 //! trimmed-away triangles, which hold no points) are not represented.
 //! [`ShapeClearance::leaves_domain`] says when a shape's reach leaves it.
@@ -25,6 +30,8 @@
 mod arm;
 mod clearance;
 mod config;
+mod deadman;
+mod decision;
 mod envelope;
 mod error;
 mod joint;
@@ -42,6 +49,10 @@ mod tests;
 
 pub use arm::{ArmModel, Link};
 pub use config::{GuardConfig, MAX_REFINE_DEPTH};
+pub use deadman::{Deadman, Motion, VerdictUse};
+pub use decision::{
+    CollisionGuard, Decision, GuardPolicy, SurrogateInput, SurrogateRejected, UnobservedPolicy,
+};
 pub use envelope::{CellBox, Envelope};
 pub use error::GuardError;
 pub use joint::{origin_from_xyz_rpy, Joint, JointKind, Limits};

@@ -107,7 +107,11 @@ pub fn check_shapes(
     Ok(summarise(results, link_count, config))
 }
 
-fn summarise(shapes: Vec<ShapeClearance>, link_count: usize, config: &GuardConfig) -> GuardReport {
+pub(crate) fn summarise(
+    shapes: Vec<ShapeClearance>,
+    link_count: usize,
+    config: &GuardConfig,
+) -> GuardReport {
     let mut links = vec![config.max_report; link_count];
     let mut closest: Option<(usize, f64)> = None;
     for (i, s) in shapes.iter().enumerate() {

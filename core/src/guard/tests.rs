@@ -78,6 +78,7 @@ fn config(stop: f64, max_report: f64, depth: u32) -> GuardConfig {
         stop_distance: stop,
         max_report,
         refine_depth: depth,
+        max_obstacle_speed: 0.0,
     }
 }
 

@@ -184,6 +184,24 @@ impl LaunchFile {
     }
 }
 
+/// The node programs `run` may name: `shroud node <kind>` (nodes/ checks that
+/// this list is exactly its subcommands).
+pub const NODE_KINDS: [&str; 8] = [
+    "scanner", "fit", "guard", "arm", "serial", "can", "blend", "smooth",
+];
+
+/// The options the launcher passes every child itself; `args` may not repeat
+/// them (nodes/ checks that this is exactly what it passes).
+pub const LAUNCHER_FLAGS: [&str; 7] = [
+    "--log",
+    "--name",
+    "--namespace",
+    "--mode",
+    "--connect",
+    "--multicast",
+    "--shm",
+];
+
 fn check_node(node: &NodeSpec) -> Result<(), LaunchError> {
     let fail = |reason: String| LaunchError::Node {
         node: node.name.clone(),
@@ -191,13 +209,20 @@ fn check_node(node: &NodeSpec) -> Result<(), LaunchError> {
     };
     check_name("name", &node.name).map_err(|e| fail(e.to_string()))?;
     check_name("run", &node.run).map_err(|e| fail(e.to_string()))?;
+    if !NODE_KINDS.contains(&node.run.as_str()) {
+        return Err(fail(format!(
+            "run = {:?} is not a node kind ({})",
+            node.run,
+            NODE_KINDS.join(", ")
+        )));
+    }
     if node.backoff_ms == 0 || node.backoff_max_ms < node.backoff_ms {
         return Err(fail(format!(
             "backoff_ms ({}) must be positive and at most backoff_max_ms ({})",
             node.backoff_ms, node.backoff_max_ms
         )));
     }
-    for reserved in ["--name", "--namespace", "--connect", "--listen"] {
+    for reserved in LAUNCHER_FLAGS {
         if node
             .args
             .iter()
@@ -263,6 +288,7 @@ env = { RUST_LOG = "debug" }
                 "[[node]]\nname=\"x\"\nrun=\"fit\"\nbackoff_ms=0",
                 "backoff_ms",
             ),
+            ("[[node]]\nname=\"x\"\nrun=\"fitter\"", "not a node kind"),
             (
                 "[[node]]\nname=\"x\"\nrun=\"fit\"\nrestart=\"sometimes\"",
                 "TOML",
@@ -276,6 +302,24 @@ env = { RUST_LOG = "debug" }
         for (text, needle) in cases {
             let err = LaunchFile::from_toml_str(text).unwrap_err().to_string();
             assert!(err.contains(needle), "{text:?}: {err}");
+        }
+    }
+
+    #[test]
+    fn every_launcher_flag_is_refused_in_args_and_every_kind_runs() {
+        for flag in LAUNCHER_FLAGS {
+            for arg in [flag.to_string(), format!("{flag}=x")] {
+                let text = format!("[[node]]\nname=\"x\"\nrun=\"fit\"\nargs=[\"{arg}\"]");
+                let err = LaunchFile::from_toml_str(&text).unwrap_err().to_string();
+                assert!(err.contains(flag), "{arg}: {err}");
+            }
+        }
+        // --listen is the node's own business (a fixed endpoint across hosts).
+        let listen = "[[node]]\nname=\"x\"\nrun=\"fit\"\nargs=[\"--listen\",\"tcp/0.0.0.0:7448\"]";
+        assert!(LaunchFile::from_toml_str(listen).is_ok());
+        for kind in NODE_KINDS {
+            let text = format!("[[node]]\nname=\"x\"\nrun=\"{kind}\"");
+            assert!(LaunchFile::from_toml_str(&text).is_ok(), "{kind}");
         }
     }
 }

@@ -9,4 +9,6 @@ mod file;
 
 pub use backoff::{Backoff, RestartDecision};
 pub use error::LaunchError;
-pub use file::{LaunchFile, NodeSpec, RestartPolicy, SummarySpec, ZenohSpec};
+pub use file::{
+    LaunchFile, NodeSpec, RestartPolicy, SummarySpec, ZenohSpec, LAUNCHER_FLAGS, NODE_KINDS,
+};

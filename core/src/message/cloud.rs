@@ -29,6 +29,13 @@ pub struct CloudMessage {
     /// Acquisition time, nanoseconds since the Unix epoch.
     pub stamp_ns: u64,
     pub sequence: u64,
+    /// Time the cloud has spent in shroud nodes before this publication, each
+    /// node measuring its own share on its own monotonic clock: from the first
+    /// node's receipt of the data (the last byte of a scan, or the simulator's
+    /// output) to this publication. Unlike `stamp_ns`, which is the device's
+    /// word, this is what safety decisions age clouds by.
+    #[serde(default)]
+    pub pipeline_ns: u64,
     /// Which sensor or scene produced it.
     pub source: String,
     pub pose: SensorPose,
@@ -53,6 +60,7 @@ impl CloudMessage {
             version: SCHEMA_VERSION,
             stamp_ns,
             sequence,
+            pipeline_ns: 0,
             source: source.to_owned(),
             pose,
             points: f32s_to_bytes(points.iter().flatten().copied()),

@@ -20,6 +20,9 @@ pub struct CloudView<'a> {
     pub version: u16,
     pub stamp_ns: u64,
     pub sequence: u64,
+    /// See [`CloudMessage::pipeline_ns`].
+    #[serde(default)]
+    pub pipeline_ns: u64,
     #[serde(borrow)]
     pub source: Cow<'a, str>,
     pub pose: SensorPose,
@@ -57,6 +60,7 @@ impl<'a> CloudView<'a> {
             version: SCHEMA_VERSION,
             stamp_ns,
             sequence,
+            pipeline_ns: 0,
             source: Cow::Borrowed(source),
             pose,
             align: None,
@@ -69,6 +73,13 @@ impl<'a> CloudView<'a> {
     /// machines).
     pub fn with_intensity(mut self, intensity: &'a [f32]) -> Self {
         self.intensity = Some(le_bytes(bytemuck::cast_slice(intensity)));
+        self
+    }
+
+    /// The same message with the time spent in shroud nodes so far
+    /// ([`CloudMessage::pipeline_ns`]).
+    pub fn with_pipeline_ns(mut self, pipeline_ns: u64) -> Self {
+        self.pipeline_ns = pipeline_ns;
         self
     }
 
@@ -188,6 +199,7 @@ impl<'a> CloudView<'a> {
             version: self.version,
             stamp_ns: self.stamp_ns,
             sequence: self.sequence,
+            pipeline_ns: self.pipeline_ns,
             source: self.source.clone().into_owned(),
             pose: self.pose,
             points: self.points.to_vec(),
@@ -337,7 +349,7 @@ mod tests {
             Err(MessageError::Count { .. })
         ));
         let mut version = msg;
-        version.version = 2;
+        version.version = SCHEMA_VERSION + 1;
         assert!(matches!(
             CloudView::from_bytes(&version.to_bytes().unwrap()),
             Err(MessageError::Version { .. })

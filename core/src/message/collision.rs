@@ -11,39 +11,97 @@ use serde::{Deserialize, Serialize};
 pub struct LinkClearance {
     pub link: String,
     pub clearance: f64,
+    /// Some shape of the link reaches space that no fresh surrogate covers (the
+    /// sensors never saw it): its clearance speaks only of the observed part.
+    #[serde(default)]
+    pub unobserved: bool,
 }
 
 /// Why the guard says stop or go.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum GuardVerdict {
-    /// Every link is farther than the stop distance from the surrogate sandwich.
+    /// Every link is farther than the stop distance from every surrogate
+    /// sandwich, after the motion allowance, and (under `--unobserved stop`)
+    /// stays inside observed space.
     Clear,
-    /// Some link is within the stop distance.
+    /// Some link is within the stop distance, or the joint state could not be
+    /// checked at all (the `reason` says which).
     Stop,
-    /// No certified surrogate has arrived yet, or the latest one is older than
-    /// the allowed age: the guard cannot vouch for anything, so it stops.
+    /// No certified surrogate has arrived yet: the guard cannot vouch for
+    /// anything, so it stops.
     NoSurrogate,
+    /// Every surrogate is older than the allowed age, measured on the guard's
+    /// own clock plus the pipeline delay the upstream nodes measured.
     Stale,
+    /// Some link reaches outside every fresh surrogate's domain, and the
+    /// guard's policy is `--unobserved stop`.
+    Unobserved,
+    /// Not sent by the guard: a verdict consumer's own state when no verdict
+    /// for one of its recent joint states arrived in time (the deadman).
+    NoVerdict,
+}
+
+impl GuardVerdict {
+    /// Every verdict, in [`Self::index`] order.
+    pub const ALL: [GuardVerdict; 6] = [
+        Self::Clear,
+        Self::Stop,
+        Self::NoSurrogate,
+        Self::Stale,
+        Self::Unobserved,
+        Self::NoVerdict,
+    ];
+
+    /// Position in [`Self::ALL`], for tables indexed by verdict.
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The wire name (`clear`, `stop`, `no-surrogate`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Clear => "clear",
+            Self::Stop => "stop",
+            Self::NoSurrogate => "no-surrogate",
+            Self::Stale => "stale",
+            Self::Unobserved => "unobserved",
+            Self::NoVerdict => "no-verdict",
+        }
+    }
 }
 
 /// The guard's output for one joint state.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CollisionMessage {
     pub version: u16,
-    /// Stamp and sequence of the joint state checked.
+    /// Stamp and sequence of the joint state checked (0 and 0 when it could
+    /// not be decoded).
     pub joints_stamp_ns: u64,
     pub joints_sequence: u64,
     pub arm: String,
-    /// Stamp and sequence of the cloud behind the surrogate used (0 if none).
+    /// Stamp and sequence of the cloud behind the oldest surrogate used (0 if
+    /// none). The stamp is the device's word, kept for the record only.
     pub surrogate_stamp_ns: u64,
     pub surrogate_sequence: u64,
+    /// Age of the oldest surrogate used at the decision: time since it reached
+    /// the guard (guard's monotonic clock) plus its `pipeline_ns`.
+    pub surrogate_age_ns: u64,
+    /// Fresh surrogate views the decision used.
+    pub views: u32,
     pub verdict: GuardVerdict,
     /// `true` unless the verdict is `clear`.
     pub stop: bool,
+    /// A human-readable reason for the verdict (empty for `clear`).
+    pub reason: String,
     pub stop_distance: f64,
+    /// Smallest link clearance, after the motion allowance
+    /// (`--max-obstacle-speed` times the surrogate's age); 0 without a
+    /// usable surrogate.
     pub min_clearance: f64,
     pub closest_link: String,
+    /// Some link reaches unobserved space (see [`LinkClearance::unobserved`]).
+    pub unobserved: bool,
     pub links: Vec<LinkClearance>,
     /// Wall time of the check, nanoseconds.
     pub check_ns: u64,
@@ -65,6 +123,12 @@ impl CollisionMessage {
             return Err(MessageError::NonFinite {
                 field: "min_clearance",
                 index: 0,
+            });
+        }
+        if msg.verdict == GuardVerdict::NoVerdict {
+            return Err(MessageError::Invalid {
+                field: "verdict",
+                reason: "no-verdict is a consumer's state, never a guard's message".into(),
             });
         }
         if msg.stop != (msg.verdict != GuardVerdict::Clear) {
@@ -90,14 +154,19 @@ mod tests {
             arm: "arm".into(),
             surrogate_stamp_ns: 3,
             surrogate_sequence: 4,
+            surrogate_age_ns: 5,
+            views: 1,
             verdict,
             stop: verdict != GuardVerdict::Clear,
+            reason: String::new(),
             stop_distance: 0.05,
             min_clearance: 0.2,
             closest_link: "wrist".into(),
+            unobserved: false,
             links: vec![LinkClearance {
                 link: "wrist".into(),
                 clearance: 0.2,
+                unobserved: false,
             }],
             check_ns: 900,
         }
@@ -109,6 +178,8 @@ mod tests {
             GuardVerdict::Clear,
             GuardVerdict::Stop,
             GuardVerdict::NoSurrogate,
+            GuardVerdict::Stale,
+            GuardVerdict::Unobserved,
         ] {
             let msg = sample(v);
             assert_eq!(
@@ -122,5 +193,22 @@ mod tests {
             CollisionMessage::from_bytes(&lying.to_bytes().unwrap()),
             Err(MessageError::Invalid { field: "stop", .. })
         ));
+        let consumer_state = sample(GuardVerdict::NoVerdict);
+        assert!(matches!(
+            CollisionMessage::from_bytes(&consumer_state.to_bytes().unwrap()),
+            Err(MessageError::Invalid {
+                field: "verdict",
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn verdict_names_are_the_wire_names() {
+        for (i, v) in GuardVerdict::ALL.into_iter().enumerate() {
+            assert_eq!(v.index(), i);
+            let json = serde_json::to_string(&v).unwrap();
+            assert_eq!(json, format!("\"{}\"", v.name()));
+        }
     }
 }

@@ -1,4 +1,4 @@
-//! The wire schema of shroud's messages (version 1): MessagePack maps with named
+//! The wire schema of shroud's messages (version 2): MessagePack maps with named
 //! fields, bulk arrays as little-endian byte blobs, so that any language decodes a
 //! message with a MessagePack library and a byte-to-array view (numpy's
 //! `frombuffer`). Pure encode/decode with validation; transport lives in `nodes/`.
@@ -11,6 +11,7 @@ mod collision;
 mod describe;
 mod error;
 mod joints;
+mod skew;
 mod smooth;
 mod status;
 mod surrogate;
@@ -24,13 +25,16 @@ pub use collision::{CollisionMessage, GuardVerdict, LinkClearance};
 pub use describe::describe;
 pub use error::MessageError;
 pub use joints::JointStateMessage;
+pub use skew::{check_stamp_skew, max_skew_ns_from_secs, StampSkew, DEFAULT_MAX_SKEW_NS};
 pub use smooth::{SmoothFitReport, SmoothPatchesMessage};
 pub use status::NodeStatusMessage;
 pub use surrogate::{SurfaceMessage, SurrogateMessage};
 pub use topic::{check_name, TopicKey, TopicKind, Topics, ROOT};
 
 /// The schema version every message carries; decoders refuse other versions.
-pub const SCHEMA_VERSION: u16 = 1;
+/// Version 2 added `pipeline_ns` to clouds and surrogates and the guard's
+/// age, views, reason and unobserved-space fields to collision messages.
+pub const SCHEMA_VERSION: u16 = 2;
 
 /// Checks a decoded message's version.
 pub(crate) fn check_version(found: u16) -> Result<(), MessageError> {

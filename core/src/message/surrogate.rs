@@ -28,6 +28,11 @@ pub struct SurrogateMessage {
     /// Stamp and sequence of the cloud this surrogate certifies.
     pub source_stamp_ns: u64,
     pub source_sequence: u64,
+    /// Time the source cloud had spent in shroud nodes when this surrogate was
+    /// published: the cloud's own `pipeline_ns` plus the fit node's wait, fit
+    /// and encoding, on the fit node's monotonic clock.
+    #[serde(default)]
+    pub pipeline_ns: u64,
     pub source: String,
     /// Frame axes: the fitting direction and `u`, `v`, `w` (each x, y, z).
     pub direction: [f64; 3],
@@ -60,6 +65,7 @@ impl SurrogateMessage {
             version: SCHEMA_VERSION,
             source_stamp_ns,
             source_sequence,
+            pipeline_ns: 0,
             source: source.to_owned(),
             direction: f.direction.to_array(),
             u: f.u.to_array(),

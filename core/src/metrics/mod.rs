@@ -7,7 +7,7 @@ mod percentiles;
 mod rate;
 mod summary;
 
-pub use allocation::{live_bytes, peak_bytes, reset_peak, CountingAllocator};
+pub use allocation::{is_counting, live_bytes, peak_bytes, reset_peak, CountingAllocator};
 pub use percentiles::{LatencySummary, Percentiles};
 pub use rate::RateMeter;
 pub use summary::GraphSummary;

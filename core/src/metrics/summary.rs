@@ -20,8 +20,9 @@ impl GraphSummary {
         self.statuses.insert(msg.node.clone(), msg);
     }
 
-    /// A surrogate arrived at `received_ns` (same clock as its source stamp).
-    pub fn on_surrogate(&mut self, msg: &SurrogateMessage, received_ns: u64) {
+    /// A surrogate arrived. Its latency is the pipeline delay the nodes
+    /// measured on their own clocks (receipt of the cloud to publication).
+    pub fn on_surrogate(&mut self, msg: &SurrogateMessage) {
         self.surrogates += 1;
         // Each surface of a sandwich certifies the same points.
         let checked = msg
@@ -32,7 +33,7 @@ impl GraphSummary {
             .unwrap_or(0);
         let violations = msg.surfaces.iter().map(|s| s.certificate.violations).sum();
         self.last_certificate = Some((checked, violations));
-        self.last_latency_ms = Some(received_ns.saturating_sub(msg.source_stamp_ns) as f64 / 1e6);
+        self.last_latency_ms = Some(msg.pipeline_ns as f64 / 1e6);
     }
 
     pub fn on_collision(&mut self, msg: CollisionMessage) {
@@ -66,6 +67,9 @@ impl GraphSummary {
             if drops > 0 {
                 part += &format!(", {drops} dropped");
             }
+            if s.kind == "arm" {
+                part += &arm_state(s);
+            }
             parts.push(part);
         }
         match self.last_certificate {
@@ -75,17 +79,58 @@ impl GraphSummary {
             None => parts.push("no surrogate yet".into()),
         }
         if let Some(c) = &self.collision {
-            parts.push(format!(
-                "{}: {} clearance {:.3} m ({}), {} stops",
+            let mut part = format!(
+                "{}: {} clearance {:.3} m ({})",
                 c.arm,
-                format!("{:?}", c.verdict).to_uppercase(),
+                c.verdict.name().to_uppercase(),
                 c.min_clearance,
                 c.closest_link,
-                self.stops
-            ));
+            );
+            if c.stop && !c.reason.is_empty() {
+                part += &format!(" [{}]", c.reason);
+            }
+            part += &format!(", {} stop verdicts", self.stops);
+            parts.push(part);
         }
         parts.join(" | ")
     }
+}
+
+/// A simulated arm's motion: moving or halted (by what, for how long), and
+/// the share of its life spent halted, from its status gauges and counters.
+fn arm_state(s: &NodeStatusMessage) -> String {
+    let halted_s = s.gauge("halted_s").unwrap_or(0.0);
+    let share = if s.uptime_s > 0.0 {
+        100.0 * halted_s / s.uptime_s
+    } else {
+        0.0
+    };
+    let causes: Vec<String> = [
+        ("halts_stop", "stop"),
+        ("halts_stale", "stale"),
+        ("halts_no_surrogate", "no-surrogate"),
+        ("halts_unobserved", "unobserved"),
+        ("halts_no_verdict", "no-verdict"),
+    ]
+    .iter()
+    .filter(|(c, _)| s.counter(c) > 0)
+    .map(|(c, name)| format!("{} {name}", s.counter(c)))
+    .collect();
+    let state = if s.gauge("halted").unwrap_or(0.0) > 0.0 {
+        format!(
+            "HALTED for {:.1} s",
+            s.gauge("halt_current_s").unwrap_or(0.0)
+        )
+    } else {
+        "moving".to_owned()
+    };
+    format!(
+        ", {state}, halted {share:.0}% of {:.0} s ({} halts{}{})",
+        s.uptime_s,
+        s.counter("halts"),
+        if causes.is_empty() { "" } else { ": " },
+        causes.join(", ")
+    )
 }
 
 #[cfg(test)]
@@ -105,6 +150,32 @@ mod tests {
         assert!(
             line.contains("fit: 12 out, fit p50 2.50 ms, 2 dropped"),
             "{line}"
+        );
+    }
+
+    #[test]
+    fn an_arm_says_whether_it_moves_and_what_halted_it() {
+        let mut g = GraphSummary::default();
+        let mut arm = NodeStatusMessage::new("arm", "arm", 1);
+        arm.uptime_s = 10.0;
+        arm.counters.insert("halts".into(), 3);
+        arm.counters.insert("halts_stop".into(), 2);
+        arm.counters.insert("halts_no_verdict".into(), 1);
+        arm.gauges.insert("halted_s".into(), 2.5);
+        arm.gauges.insert("halted".into(), 0.0);
+        g.on_status(arm.clone());
+        let line = g.line(10.0);
+        assert!(
+            line.contains("moving, halted 25% of 10 s (3 halts: 2 stop, 1 no-verdict)"),
+            "{line}"
+        );
+        arm.gauges.insert("halted".into(), 1.0);
+        arm.gauges.insert("halt_current_s".into(), 0.75);
+        g.on_status(arm);
+        assert!(
+            g.line(10.0).contains("HALTED for 0.8 s"),
+            "{}",
+            g.line(10.0)
         );
     }
 }

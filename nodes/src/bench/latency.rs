@@ -3,7 +3,7 @@
 //! and real zenoh sessions, at several cloud sizes and rates.
 
 use super::BenchArgs;
-use crate::transport::{unix_ns, OnOff, PayloadWriter, ZenohArgs};
+use crate::transport::{die_with_parent, unix_ns, OnOff, PayloadWriter, ZenohArgs};
 use anyhow::{Context, Result};
 use shroud_core::message::{CloudView, SurrogateMessage};
 use shroud_core::metrics::Percentiles;
@@ -182,22 +182,23 @@ struct FitProcess(Child);
 impl FitProcess {
     fn start(endpoint: &str, namespace: &str) -> Result<Self> {
         let exe = std::env::current_exe()?;
-        let child = Command::new(exe)
-            .args([
-                "node",
-                "fit",
-                "--input",
-                "bench",
-                "--connect",
-                endpoint,
-                "--multicast",
-                "off",
-            ])
-            .args(["--namespace", namespace])
-            .stdin(Stdio::null())
-            .stdout(Stdio::null())
-            .spawn()
-            .context("cannot start the fit node")?;
+        let mut cmd = Command::new(exe);
+        cmd.args([
+            "node",
+            "fit",
+            "--input",
+            "bench",
+            "--connect",
+            endpoint,
+            "--multicast",
+            "off",
+        ])
+        .args(["--namespace", namespace])
+        .stdin(Stdio::null())
+        .stdout(Stdio::null());
+        // A bench killed outright must not leave its fit node running.
+        die_with_parent(&mut cmd);
+        let child = cmd.spawn().context("cannot start the fit node")?;
         Ok(Self(child))
     }
 

@@ -5,7 +5,6 @@ mod latency;
 mod paper000;
 mod timing;
 
-pub use shroud_core::metrics::{live_bytes, peak_bytes, reset_peak, CountingAllocator};
 pub use timing::{median, timed};
 
 use anyhow::Result;

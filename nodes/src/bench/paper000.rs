@@ -43,7 +43,6 @@ struct Timings {
     plain_ms: f64,
     tight_ms: f64,
     warm_ms: f64,
-    extra_bytes: usize,
 }
 
 /// Median cold-fit times over `configs x runs` fits, plus a warm-started stream.
@@ -60,7 +59,6 @@ fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
         ..Default::default()
     };
     let (mut default, mut plain, mut tight, mut warm) = (vec![], vec![], vec![], vec![]);
-    let mut extra_bytes = 0;
     for config in 0..configs {
         let pts = cloud(points, config)?;
         for (tightness, out) in [
@@ -69,11 +67,7 @@ fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
         ] {
             for _ in 0..runs {
                 let mut fitter = SurrogateFitter::new(options(tightness))?;
-                let before = shroud_core::metrics::live_bytes();
-                shroud_core::metrics::reset_peak();
                 let (fit, ms) = timed(|| fitter.fit(&pts));
-                extra_bytes =
-                    extra_bytes.max(shroud_core::metrics::peak_bytes().saturating_sub(before));
                 certified(&fit?)?;
                 out.push(ms);
             }
@@ -91,7 +85,6 @@ fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
         plain_ms: median(&mut plain),
         tight_ms: median(&mut tight),
         warm_ms: median(&mut warm),
-        extra_bytes,
     })
 }
 
@@ -141,16 +134,15 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 
 fn table1(args: &BenchArgs) -> Result<()> {
     println!("## Table 1: time vs N, 20 x 20, certification included\n");
-    println!("| N | paper (ms, P4 2.4 GHz) | shroud default (ms) | shroud --plain (ms) | shroud --tight (ms) | warm stream (ms) | points/s (default) | speed-up vs paper | extra memory / cloud |");
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| N | paper (ms, P4 2.4 GHz) | shroud default (ms) | shroud --plain (ms) | shroud --tight (ms) | warm stream (ms) | points/s (default) | speed-up vs paper |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
     for (n, paper) in TABLE1 {
         if args.quick && n > 30_000 {
             continue;
         }
         let t = measure(n, 20, args)?;
-        let cloud_bytes = n * 12;
         println!(
-            "| {}K | {paper} | {:.2} | {:.2} | {:.2} | {:.2} | {:.0}M | {:.0}x | {:.2} |",
+            "| {}K | {paper} | {:.2} | {:.2} | {:.2} | {:.2} | {:.0}M | {:.0}x |",
             n / 1000,
             t.default_ms,
             t.plain_ms,
@@ -158,7 +150,6 @@ fn table1(args: &BenchArgs) -> Result<()> {
             t.warm_ms,
             n as f64 / t.default_ms / 1e3,
             paper / t.default_ms,
-            t.extra_bytes as f64 / cloud_bytes as f64
         );
     }
     println!();

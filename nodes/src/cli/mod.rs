@@ -23,8 +23,9 @@ use clap::{Parser, Subcommand};
 )]
 pub struct Cli {
     /// Log filter (tracing env-filter syntax), e.g. `info` or `shroud=debug`.
-    #[arg(long, global = true, default_value = "warn")]
-    pub log: String,
+    /// Default: the `RUST_LOG` environment variable, else `warn`.
+    #[arg(long, global = true)]
+    pub log: Option<String>,
     #[command(subcommand)]
     pub command: Command,
 }

@@ -93,12 +93,7 @@ pub fn run(args: SimArgs) -> Result<()> {
         bail!("--quads and --write-quads belong to the limit-surface scene");
     }
     let scene = match &args.config {
-        Some(path) => {
-            let text =
-                std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-            serde_json::from_slice::<Scene>(&text)
-                .with_context(|| format!("bad scene configuration {}", path.display()))?
-        }
+        Some(path) => files::read_scene_config(path)?,
         None => Scene::by_name(&args.scene, args.points, args.seed)?,
     };
     let points = scene.generate(args.time)?;

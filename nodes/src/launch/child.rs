@@ -1,8 +1,13 @@
 //! One child process: spawned as `shroud node <run> ...` in its own process
-//! group, with a parent-death signal, and its output prefixed line by line.
+//! group, tied to the launcher's life (parent-death signal and the node's own
+//! watch on our pid), and its output prefixed line by line.
 
+use crate::transport::die_with_parent;
 use anyhow::{Context, Result};
 use shroud_core::launch::NodeSpec;
+#[cfg(doc)]
+use shroud_core::launch::LAUNCHER_FLAGS;
+use std::io::Write;
 use std::process::Stdio;
 use tokio::io::{AsyncBufReadExt, AsyncRead, BufReader};
 use tokio::process::{Child, Command};
@@ -18,10 +23,17 @@ pub struct Wiring {
     pub log: String,
 }
 
-pub fn spawn(spec: &NodeSpec, wiring: &Wiring) -> Result<Child> {
+/// The child's command line: the launcher's own flags (exactly
+/// [`LAUNCHER_FLAGS`], which launch files may not repeat), then the node's
+/// `args`. `--log` is left out when the node's `env` sets `RUST_LOG`, so that
+/// the node reads that instead.
+fn command(spec: &NodeSpec, wiring: &Wiring) -> Result<Command> {
     let exe = std::env::current_exe().context("cannot find the shroud executable")?;
     let mut cmd = Command::new(exe);
-    cmd.arg("--log").arg(&wiring.log).arg("node").arg(&spec.run);
+    if !spec.env.contains_key("RUST_LOG") {
+        cmd.arg("--log").arg(&wiring.log);
+    }
+    cmd.arg("node").arg(&spec.run);
     cmd.arg("--name").arg(&spec.name);
     cmd.arg("--namespace").arg(&wiring.namespace);
     cmd.arg("--mode").arg(&wiring.mode);
@@ -33,6 +45,11 @@ pub fn spawn(spec: &NodeSpec, wiring: &Wiring) -> Result<Child> {
     cmd.arg("--shm").arg(if wiring.shm { "on" } else { "off" });
     cmd.args(&spec.args);
     cmd.envs(&spec.env);
+    Ok(cmd)
+}
+
+pub fn spawn(spec: &NodeSpec, wiring: &Wiring) -> Result<Child> {
+    let mut cmd = command(spec, wiring)?;
     cmd.stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped());
@@ -40,21 +57,9 @@ pub fn spawn(spec: &NodeSpec, wiring: &Wiring) -> Result<Child> {
     // which then stops the children in order instead of all dying at once.
     cmd.process_group(0);
     cmd.kill_on_drop(true);
-    let launcher = std::process::id() as libc::pid_t;
-    // SAFETY: only async-signal-safe calls (prctl, getppid, kill) run between
-    // fork and exec.
-    unsafe {
-        cmd.pre_exec(move || {
-            if libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGTERM) != 0 {
-                return Err(std::io::Error::last_os_error());
-            }
-            // The launcher may have died before prctl took effect.
-            if libc::getppid() != launcher {
-                libc::kill(libc::getpid(), libc::SIGTERM);
-            }
-            Ok(())
-        });
-    }
+    // The parent-death signal, and our pid for the node's own watch on it: a
+    // launcher killed outright leaves no live node, reaped or not.
+    die_with_parent(cmd.as_std_mut());
     let mut child = cmd
         .spawn()
         .with_context(|| format!("cannot start node {} ({})", spec.name, spec.run))?;
@@ -67,14 +72,17 @@ pub fn spawn(spec: &NodeSpec, wiring: &Wiring) -> Result<Child> {
     Ok(child)
 }
 
+/// Copies a child's output, prefixed. It keeps reading even when our own
+/// output fails (`println!` would panic and drop the pipe): a child whose pipe
+/// has no reader gets EPIPE on every log line.
 async fn prefix_lines(stream: impl AsyncRead + Unpin, name: String, is_err: bool) {
     let mut lines = BufReader::new(stream).lines();
     while let Ok(Some(line)) = lines.next_line().await {
-        if is_err {
-            eprintln!("[{name}] {line}");
+        let _ = if is_err {
+            writeln!(std::io::stderr(), "[{name}] {line}")
         } else {
-            println!("[{name}] {line}");
-        }
+            writeln!(std::io::stdout(), "[{name}] {line}")
+        };
     }
 }
 
@@ -93,5 +101,46 @@ pub async fn stop(child: &mut Child, name: &str, grace: std::time::Duration) {
             let _ = child.start_kill();
             let _ = child.wait().await;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shroud_core::launch::{LaunchFile, LAUNCHER_FLAGS};
+
+    fn flags_of(text: &str) -> Vec<String> {
+        let file = LaunchFile::from_toml_str(text).unwrap();
+        let wiring = Wiring {
+            namespace: "ns".into(),
+            mode: "peer".into(),
+            connect: vec!["tcp/127.0.0.1:1".into()],
+            multicast: false,
+            shm: true,
+            log: "info".into(),
+        };
+        let cmd = command(&file.nodes[0], &wiring).unwrap();
+        let args: Vec<String> = cmd
+            .as_std()
+            .get_args()
+            .map(|a| a.to_string_lossy().into_owned())
+            .collect();
+        args.into_iter().filter(|a| a.starts_with("--")).collect()
+    }
+
+    #[test]
+    fn the_launcher_passes_exactly_its_reserved_flags() {
+        let mut flags = flags_of("[[node]]\nname=\"x\"\nrun=\"fit\"");
+        flags.sort();
+        flags.dedup();
+        let mut reserved: Vec<String> = LAUNCHER_FLAGS.iter().map(|f| f.to_string()).collect();
+        reserved.sort();
+        assert_eq!(flags, reserved);
+    }
+
+    #[test]
+    fn a_node_with_its_own_rust_log_gets_no_log_flag() {
+        let flags = flags_of("[[node]]\nname=\"x\"\nrun=\"fit\"\nenv={RUST_LOG=\"debug\"}");
+        assert!(!flags.contains(&"--log".to_string()), "{flags:?}");
     }
 }

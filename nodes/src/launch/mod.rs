@@ -1,7 +1,9 @@
 //! `shroud launch FILE`: starts every node of a launch file as a child process,
 //! prefixes their logs, restarts failed nodes by policy, prints a live summary,
-//! and stops them all on Ctrl-C or SIGTERM. Children die with the launcher even
-//! when it is killed outright (`PR_SET_PDEATHSIG`).
+//! and stops them all on Ctrl-C or SIGTERM. Children stop with the launcher even
+//! when it is killed outright: each gets a parent-death signal and watches the
+//! launcher's pid itself (`SHROUD_LAUNCHER_PID`), which works whether or not the
+//! dead launcher is reaped.
 
 mod child;
 mod monitor;
@@ -48,6 +50,8 @@ pub fn run(args: LaunchArgs) -> Result<()> {
         }
         return Ok(());
     }
+    // Our own prefixed lines must not panic if whoever reads them goes away.
+    crate::transport::keep_outputs_writable();
     // One worker thread (zenoh needs the multi-thread scheduler): the children
     // are spawned from it, and the kernel's parent-death signal is tied to the
     // thread that forked them, which lives as long as the runtime.

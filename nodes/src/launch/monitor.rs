@@ -1,7 +1,6 @@
 //! The launcher's live summary: folds status, surrogate and collision messages
 //! into a [`GraphSummary`] and prints its line every period.
 
-use crate::transport::unix_ns;
 use anyhow::Result;
 use shroud_core::message::{
     CollisionMessage, NodeStatusMessage, SurrogateMessage, TopicKind, Topics,
@@ -42,7 +41,7 @@ pub async fn run(session: zenoh::Session, topics: Result<Topics>, period: f64) {
                     }
                     TopicKind::Surrogate => {
                         if let Ok((m, _)) = SurrogateMessage::from_bytes(&bytes) {
-                            s.on_surrogate(&m, unix_ns());
+                            s.on_surrogate(&m);
                         }
                     }
                     _ => {

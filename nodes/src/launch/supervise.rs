@@ -133,6 +133,20 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
     Ok(())
 }
 
+/// Reports how a child ended; true if it succeeded.
+fn exited(name: &str, status: std::io::Result<std::process::ExitStatus>) -> bool {
+    match status {
+        Ok(status) => {
+            println!("[launch] {name} exited: {status}");
+            status.success()
+        }
+        Err(e) => {
+            println!("[launch] {name} exited: {e}");
+            false
+        }
+    }
+}
+
 async fn supervise(
     spec: NodeSpec,
     wiring: Wiring,
@@ -158,11 +172,7 @@ async fn supervise(
                     process.id().unwrap_or(0)
                 );
                 tokio::select! {
-                    status = process.wait() => {
-                        let status = status.map(|s| s.to_string()).unwrap_or_else(|e| e.to_string());
-                        println!("[launch] {} exited: {status}", spec.name);
-                        status == "exit status: 0"
-                    }
+                    status = process.wait() => exited(&spec.name, status),
                     _ = stop.changed() => {
                         child::stop(&mut process, &spec.name, grace).await;
                         return outcome(OutcomeKind::Stopped);

@@ -1,16 +1,18 @@
 //! The `arm` node: a simulated manipulator that follows the trajectory of its
-//! arm file, publishes its joint states, and halts while the guard says stop.
+//! arm file, publishes its joint states, and moves only while its [`Deadman`]
+//! allows: a fresh `clear` for one of its own recent joint states. A stop, a
+//! stale surrogate, or a guard that falls silent halts it; it resumes where it
+//! stopped once the guard clears it again (wait and resume).
 
 use super::arm_file::{joint_names, read_arm_file};
 use super::runtime::{run_node, NodeCommon, NodeContext};
-use crate::transport::unix_ns;
+use crate::transport::{monotonic_ns, unix_ns};
 use anyhow::{Context, Result};
 use clap::Args;
-use shroud_core::guard::{ArmFile, Trajectory};
-use shroud_core::message::{CollisionMessage, JointStateMessage, TopicKind};
+use shroud_core::guard::{ArmFile, Deadman, Motion, Trajectory, VerdictUse};
+use shroud_core::message::{CollisionMessage, GuardVerdict, JointStateMessage, TopicKind};
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 use zenoh::qos::{CongestionControl, Priority};
 use zenoh::Wait;
@@ -28,6 +30,10 @@ pub struct ArmArgs {
     /// Joint states per second.
     #[arg(long, default_value_t = 50.0)]
     pub rate: f64,
+    /// The deadman's deadline in seconds: halt when no clear verdict for a
+    /// joint state sent within this long has arrived (default: three periods).
+    #[arg(long)]
+    pub deadline: Option<f64>,
     /// Keep moving whatever the guard says (to watch the guard's verdicts alone).
     #[arg(long)]
     pub ignore_guard: bool,
@@ -39,6 +45,12 @@ pub fn run(args: ArmArgs) -> Result<()> {
         args.rate.is_finite() && args.rate > 0.0 && args.rate <= 1000.0,
         "--rate must be in (0, 1000] per second"
     );
+    if let Some(d) = args.deadline {
+        anyhow::ensure!(
+            d.is_finite() && d > 0.0 && d <= 10.0,
+            "--deadline must be in (0, 10] seconds"
+        );
+    }
     let trajectory = file.trajectory.clone().with_context(|| {
         format!(
             "arm file {} has no [trajectory] to follow",
@@ -49,6 +61,16 @@ pub fn run(args: ArmArgs) -> Result<()> {
     run_node(&common, "arm", move |ctx| {
         serve(ctx, args, file, trajectory)
     })
+}
+
+/// The deadman and the reason of the last verdict that was not clear.
+struct Verdicts {
+    deadman: Deadman,
+    last_reason: String,
+}
+
+fn lock(v: &Mutex<Verdicts>) -> MutexGuard<'_, Verdicts> {
+    v.lock().unwrap_or_else(|p| p.into_inner())
 }
 
 fn serve(
@@ -63,28 +85,19 @@ fn serve(
         .unwrap_or_else(|| file.arm.name().to_string());
     let joints_key = ctx.key(TopicKind::Joints, &arm_name)?;
     let collision_key = ctx.key(TopicKind::Collision, &arm_name)?;
-    // Halted until the guard first says clear: no surrogate, no motion.
-    let halted = Arc::new(AtomicBool::new(!args.ignore_guard));
+    let period = Duration::from_secs_f64(1.0 / args.rate);
+    let deadline = args.deadline.unwrap_or(3.0 / args.rate);
+    let verdicts = Arc::new(Mutex::new(Verdicts {
+        deadman: Deadman::new((deadline * 1e9) as u64),
+        last_reason: String::new(),
+    }));
     let _verdicts = {
-        let (c, halted) = (ctx.clone(), halted.clone());
-        let obey = !args.ignore_guard;
+        let (c, verdicts) = (ctx.clone(), verdicts.clone());
         ctx.session
             .declare_subscriber(&collision_key)
             .callback(move |sample| {
                 match CollisionMessage::from_bytes(&sample.payload().to_bytes()) {
-                    Ok(msg) if obey => {
-                        let was = halted.swap(msg.stop, Ordering::Relaxed);
-                        if msg.stop && !was {
-                            c.metrics.add("halts", 1);
-                            tracing::warn!(
-                                "halted by the guard: {:?} at {} ({:.3} m)",
-                                msg.verdict,
-                                msg.closest_link,
-                                msg.min_clearance
-                            );
-                        }
-                    }
-                    Ok(_) => {}
+                    Ok(msg) => on_verdict(&c, &verdicts, &msg),
                     Err(e) => c.drop_malformed(sample.key_expr().as_str(), &e),
                 }
             })
@@ -100,17 +113,23 @@ fn serve(
         .wait()
         .map_err(|e| anyhow::anyhow!("publisher {joints_key}: {e}"))?;
     let names = joint_names(&file);
-    let period = Duration::from_secs_f64(1.0 / args.rate);
     let (mut motion_time, mut sequence) = (0.0f64, 0u64);
     let mut last = Instant::now();
     let mut positions = trajectory.positions_at(0.0)?;
+    let mut halt = HaltLog::default();
     while !ctx.stopping() {
         let now = Instant::now();
+        let motion = if args.ignore_guard {
+            Motion::Move
+        } else {
+            lock(&verdicts).deadman.motion(monotonic_ns())
+        };
         // Trajectory time advances only while the arm is allowed to move.
-        if !halted.load(Ordering::Relaxed) {
+        if motion == Motion::Move {
             motion_time += (now - last).as_secs_f64();
             positions = trajectory.positions_at(motion_time)?;
         }
+        halt.update(&ctx, motion, &lock(&verdicts).last_reason, now);
         last = now;
         let msg = JointStateMessage::new(
             unix_ns(),
@@ -119,21 +138,76 @@ fn serve(
             names.clone(),
             positions.clone(),
         );
+        lock(&verdicts).deadman.sent(sequence, monotonic_ns());
         match publisher.put(msg.to_bytes()?).wait() {
             Ok(()) => ctx.metrics.add("published", 1),
             Err(e) => tracing::warn!("publish joints: {e}"),
         }
-        ctx.metrics.set(
-            "halted",
-            if halted.load(Ordering::Relaxed) {
-                1.0
-            } else {
-                0.0
-            },
-        );
         ctx.metrics.set("trajectory_s", motion_time);
         sequence += 1;
         std::thread::sleep(period.saturating_sub(now.elapsed()));
     }
     Ok(())
 }
+
+fn on_verdict(ctx: &NodeContext, verdicts: &Mutex<Verdicts>, msg: &CollisionMessage) {
+    let mut v = lock(verdicts);
+    match v.deadman.verdict(msg.joints_sequence, msg.verdict) {
+        VerdictUse::Applied => ctx.metrics.add("verdicts", 1),
+        VerdictUse::Unknown => ctx.metrics.add("verdicts_unknown", 1),
+        VerdictUse::Superseded => ctx.metrics.add("verdicts_superseded", 1),
+    }
+    if msg.stop {
+        v.last_reason = format!("{}: {}", msg.verdict.name(), msg.reason);
+    }
+}
+
+/// Halts as they happen: counted per cause, logged with their reason and
+/// their length, and the time spent halted in the status.
+#[derive(Default)]
+struct HaltLog {
+    since: Option<(Instant, GuardVerdict)>,
+    halted_s: f64,
+}
+
+impl HaltLog {
+    fn update(&mut self, ctx: &NodeContext, motion: Motion, reason: &str, now: Instant) {
+        match (motion, self.since) {
+            (Motion::Halt(v), None) => {
+                ctx.metrics.add("halts", 1);
+                ctx.metrics.add(HALT_COUNTERS[v.index()], 1);
+                let why = if v == GuardVerdict::NoVerdict {
+                    "no-verdict: no fresh clear verdict within the deadline"
+                } else {
+                    reason
+                };
+                tracing::warn!("halted: {why}");
+                self.since = Some((now, v));
+            }
+            (Motion::Move, Some((start, v))) => {
+                let held = (now - start).as_secs_f64();
+                self.halted_s += held;
+                tracing::info!("resumed after {held:.2} s halted ({})", v.name());
+                self.since = None;
+            }
+            _ => {}
+        }
+        let current = self
+            .since
+            .map_or(0.0, |(start, _)| (now - start).as_secs_f64());
+        let m = &ctx.metrics;
+        m.set("halted", if self.since.is_some() { 1.0 } else { 0.0 });
+        m.set("halted_s", self.halted_s + current);
+        m.set("halt_current_s", current);
+    }
+}
+
+/// Status counters per halt cause, in [`GuardVerdict::ALL`] order.
+const HALT_COUNTERS: [&str; 6] = [
+    "halts_clear",
+    "halts_stop",
+    "halts_no_surrogate",
+    "halts_stale",
+    "halts_unobserved",
+    "halts_no_verdict",
+];

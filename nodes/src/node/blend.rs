@@ -256,8 +256,12 @@ fn parent(
         .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))?;
     tracing::info!(%key, "waiting for the parent cloud");
     while !ctx.stopping() {
-        let Ok(Some(sample)) = subscriber.recv_timeout(Duration::from_millis(100)) else {
-            continue;
+        // A timeout is `Ok(None)`; an error means the subscriber is gone (the
+        // session closed): waiting on would spin, not wait.
+        let sample = match subscriber.recv_timeout(Duration::from_millis(100)) {
+            Ok(Some(sample)) => sample,
+            Ok(None) => continue,
+            Err(e) => anyhow::bail!("the parent stream {key} closed: {e}"),
         };
         let decoded =
             CloudMessage::from_bytes(&sample.payload().to_bytes()).and_then(|m| m.point_array());

@@ -129,13 +129,17 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
             }
         };
         let fit_ns = start.elapsed().as_nanos() as u64;
-        let out = SurrogateMessage::from_surrogate(
+        let mut out = SurrogateMessage::from_surrogate(
             &surrogate,
             msg.stamp_ns,
             msg.sequence,
             &msg.source,
             fit_ns,
         );
+        // The cloud's age so far, on the upstream nodes' clocks, plus its time
+        // here on ours (queue, decode, fit): what the guard ages it by.
+        let here_ns = arrival.received.elapsed().as_nanos() as u64;
+        out.pipeline_ns = msg.pipeline_ns.saturating_add(here_ns);
         let publish_start = Instant::now();
         match out.to_bytes() {
             Ok(bytes) => match publisher.put(bytes).wait() {
@@ -160,7 +164,7 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
             "frame"
         );
         fit_ms.push(fit_ns as f64 / 1e6);
-        latency_ms.push(unix_ns().saturating_sub(msg.stamp_ns) as f64 / 1e6);
+        latency_ms.push(out.pipeline_ns as f64 / 1e6);
         ctx.metrics.set("points", points.len() as f64);
         // Where a frame's time goes besides the fit, for `shroud topic echo`.
         ctx.metrics.set("transit_ms", transit_ms);

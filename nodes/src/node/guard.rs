@@ -1,19 +1,21 @@
-//! The `guard` node: the onboard conservative collision envelope. It keeps the
-//! latest certified surrogate as an [`Envelope`] and answers every joint state
-//! with per-link clearances and a stop flag.
+//! The `guard` node: the onboard conservative collision envelope. It feeds the
+//! latest certified surrogate of each view into a [`CollisionGuard`] and answers
+//! every joint state, usable or not, with a verdict: silence always means
+//! trouble to the consumer's deadman.
 
 use super::arm_file::{joint_names, read_arm_file};
 use super::runtime::{run_node, NodeCommon, NodeContext};
-use crate::transport::unix_ns;
+use crate::transport::{monotonic_ns, unix_ns};
 use anyhow::Result;
-use clap::Args;
-use shroud_core::guard::{check_arm, ArmFile, Envelope, GuardConfig, GuardReport};
+use clap::{Args, ValueEnum};
+use shroud_core::guard::{
+    ArmFile, CollisionGuard, Decision, Envelope, GuardPolicy, SurrogateInput, UnobservedPolicy,
+};
 use shroud_core::message::{
-    CollisionMessage, GuardVerdict, JointStateMessage, LinkClearance, SurrogateMessage, TopicKind,
-    SCHEMA_VERSION,
+    max_skew_ns_from_secs, CollisionMessage, JointStateMessage, SurrogateMessage, TopicKind,
 };
 use std::path::PathBuf;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 use zenoh::qos::{CongestionControl, Priority};
 use zenoh::Wait;
@@ -26,78 +28,92 @@ pub struct GuardArgs {
     #[arg(long)]
     pub arm_file: PathBuf,
     /// Surrogate stream to guard against (`shroud/<ns>/surrogate/<name>`).
-    #[arg(long, default_value = "sim")]
-    pub surrogate: String,
+    /// Repeat for several views of the same cloud (fit nodes with different
+    /// `--dir`): per shape the best of the views' bounds counts.
+    #[arg(long = "surrogate", default_value = "sim")]
+    pub surrogates: Vec<String>,
     /// Joint and collision stream name (default: the arm file's name).
     #[arg(long)]
     pub arm: Option<String>,
     /// Stop below this clearance in metres (default: the arm file's [guard] table).
     #[arg(long)]
     pub stop_distance: Option<f64>,
-    /// A surrogate whose cloud is older than this (seconds) no longer vouches for
-    /// anything: the verdict becomes `stale` and the arm is stopped.
+    /// A surrogate older than this (seconds: time since it reached the guard
+    /// plus the pipeline delay the upstream nodes measured) vouches for nothing.
     #[arg(long, default_value_t = 1.0)]
     pub max_age: f64,
+    /// A surrogate whose source stamp is further than this (seconds) from this
+    /// node's clock is refused and counted as `clock_skew` (`inf`: no check,
+    /// e.g. for replays of old logs).
+    #[arg(long, default_value_t = 5.0)]
+    pub max_skew: f64,
+    /// Bound on obstacle speed (m/s): clearances shrink by this times the
+    /// surrogate's age (default: the arm file's [guard] table, else 0).
+    #[arg(long)]
+    pub max_obstacle_speed: Option<f64>,
+    /// A link reaching outside every fresh surrogate's domain: `stop`
+    /// (verdict `unobserved`) or `ignore` (judge the observed space only).
+    #[arg(long, value_enum, default_value_t = Unobserved::Stop)]
+    pub unobserved: Unobserved,
 }
 
-/// The surrogate currently guarded against.
-struct Latest {
-    envelope: Envelope,
-    stamp_ns: u64,
-    sequence: u64,
+/// `--unobserved` on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Unobserved {
+    Stop,
+    Ignore,
 }
 
 pub fn run(args: GuardArgs) -> Result<()> {
     let mut file = read_arm_file(&args.arm_file)?;
     if let Some(d) = args.stop_distance {
-        file.guard = GuardConfig {
-            stop_distance: d,
-            max_report: file.guard.max_report.max(d),
-            ..file.guard
-        };
-        file.guard.validate()?;
+        file.guard.stop_distance = d;
+        file.guard.max_report = file.guard.max_report.max(d);
     }
+    if let Some(v) = args.max_obstacle_speed {
+        file.guard.max_obstacle_speed = v;
+    }
+    let policy = policy(&args)?;
+    let links = file.arm.links().iter().map(|l| l.name.clone()).collect();
+    let guard = CollisionGuard::new(args.surrogates.clone(), links, policy, file.guard)?;
+    let common = args.common.clone();
+    run_node(&common, "guard", move |ctx| serve(ctx, args, file, guard))
+}
+
+fn policy(args: &GuardArgs) -> Result<GuardPolicy> {
     anyhow::ensure!(
         args.max_age.is_finite() && args.max_age > 0.0,
         "--max-age must be positive"
     );
-    let common = args.common.clone();
-    run_node(&common, "guard", move |ctx| serve(ctx, args, file))
+    let max_skew_ns = max_skew_ns_from_secs(args.max_skew)
+        .ok_or_else(|| anyhow::anyhow!("--max-skew must be positive (inf: no check)"))?;
+    Ok(GuardPolicy {
+        max_age_ns: (args.max_age * 1e9) as u64,
+        max_skew_ns,
+        unobserved: match args.unobserved {
+            Unobserved::Stop => UnobservedPolicy::Stop,
+            Unobserved::Ignore => UnobservedPolicy::Ignore,
+        },
+    })
 }
 
-fn serve(ctx: Arc<NodeContext>, args: GuardArgs, file: ArmFile) -> Result<()> {
+fn serve(
+    ctx: Arc<NodeContext>,
+    args: GuardArgs,
+    file: ArmFile,
+    guard: CollisionGuard,
+) -> Result<()> {
     let arm_name = args
         .arm
         .clone()
         .unwrap_or_else(|| file.arm.name().to_string());
-    let surrogate_key = ctx.key(TopicKind::Surrogate, &args.surrogate)?;
     let joints_key = ctx.key(TopicKind::Joints, &arm_name)?;
     let collision_key = ctx.key(TopicKind::Collision, &arm_name)?;
-    let latest: Arc<Mutex<Option<Latest>>> = Arc::default();
-    let _surrogates = {
-        let (c, latest) = (ctx.clone(), latest.clone());
-        ctx.session
-            .declare_subscriber(&surrogate_key)
-            .callback(move |sample| {
-                let key = sample.key_expr().to_string();
-                let built = SurrogateMessage::from_bytes(&sample.payload().to_bytes())
-                    .map_err(anyhow::Error::from)
-                    .and_then(|(msg, s)| Ok((msg, Envelope::new(&s)?)));
-                match built {
-                    Ok((msg, envelope)) => {
-                        c.metrics.add("surrogates", 1);
-                        *latest.lock().unwrap_or_else(|p| p.into_inner()) = Some(Latest {
-                            envelope,
-                            stamp_ns: msg.source_stamp_ns,
-                            sequence: msg.source_sequence,
-                        });
-                    }
-                    Err(e) => c.drop_malformed(&key, &e),
-                }
-            })
-            .wait()
-            .map_err(|e| anyhow::anyhow!("subscribe {surrogate_key}: {e}"))?
-    };
+    let guard = Arc::new(Mutex::new(guard));
+    let mut subscribers = Vec::new();
+    for (view, name) in args.surrogates.iter().enumerate() {
+        subscribers.push(subscribe_view(&ctx, &guard, view, name)?);
+    }
     // A stop must not be lost to congestion: collision messages block rather
     // than drop, at real-time priority.
     let publisher = ctx
@@ -113,8 +129,7 @@ fn serve(ctx: Arc<NodeContext>, args: GuardArgs, file: ArmFile) -> Result<()> {
         names: joint_names(&file),
         file,
         arm_name,
-        max_age_ns: (args.max_age * 1e9) as u64,
-        latest,
+        guard,
         publisher,
     };
     let _joints = ctx
@@ -125,11 +140,57 @@ fn serve(ctx: Arc<NodeContext>, args: GuardArgs, file: ArmFile) -> Result<()> {
         })
         .wait()
         .map_err(|e| anyhow::anyhow!("subscribe {joints_key}: {e}"))?;
-    tracing::info!(%surrogate_key, %joints_key, %collision_key, "guarding");
+    tracing::info!(views = ?args.surrogates, %joints_key, %collision_key, "guarding");
     while !ctx.stopping() {
         std::thread::sleep(Duration::from_millis(100));
     }
+    drop(subscribers);
     Ok(())
+}
+
+fn lock(guard: &Mutex<CollisionGuard>) -> MutexGuard<'_, CollisionGuard> {
+    guard.lock().unwrap_or_else(|p| p.into_inner())
+}
+
+/// Feeds one view's surrogates into the guard, stamped with their arrival on
+/// this node's monotonic clock (before the envelope is built, so that the
+/// building counts toward their age).
+fn subscribe_view(
+    ctx: &Arc<NodeContext>,
+    guard: &Arc<Mutex<CollisionGuard>>,
+    view: usize,
+    name: &str,
+) -> Result<zenoh::pubsub::Subscriber<()>> {
+    let key = ctx.key(TopicKind::Surrogate, name)?;
+    let (c, guard) = (ctx.clone(), guard.clone());
+    ctx.session
+        .declare_subscriber(&key)
+        .callback(move |sample| {
+            let arrived_ns = monotonic_ns();
+            let key = sample.key_expr().to_string();
+            let built = SurrogateMessage::from_bytes(&sample.payload().to_bytes())
+                .map_err(anyhow::Error::from)
+                .and_then(|(msg, s)| Ok((msg, Envelope::new(&s)?)));
+            let (msg, envelope) = match built {
+                Ok(built) => built,
+                Err(e) => return c.drop_malformed(&key, &e),
+            };
+            let input = SurrogateInput {
+                envelope,
+                stamp_ns: msg.source_stamp_ns,
+                sequence: msg.source_sequence,
+                pipeline_ns: msg.pipeline_ns,
+            };
+            match lock(&guard).accept(view, input, arrived_ns, unix_ns()) {
+                Ok(()) => c.metrics.add("surrogates", 1),
+                Err(refused) => {
+                    c.metrics.add(refused.counter(), 1);
+                    tracing::warn!(%key, "surrogate refused: {refused}");
+                }
+            }
+        })
+        .wait()
+        .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))
 }
 
 struct Checker {
@@ -137,113 +198,76 @@ struct Checker {
     file: ArmFile,
     names: Vec<String>,
     arm_name: String,
-    max_age_ns: u64,
-    latest: Arc<Mutex<Option<Latest>>>,
+    guard: Arc<Mutex<CollisionGuard>>,
     publisher: zenoh::pubsub::Publisher<'static>,
 }
 
 impl Checker {
+    /// Answers a joint state: a verdict when it can be checked, else a stop
+    /// that says why (and the message is counted as malformed).
     fn on_joints(&self, key: &str, bytes: &[u8]) {
-        let msg = match JointStateMessage::from_bytes(bytes) {
-            Ok(m) if m.names == self.names => m,
-            Ok(m) => {
-                let e = format!(
-                    "joint names {:?} are not the arm's {:?}",
-                    m.names, self.names
-                );
-                return self.ctx.drop_malformed(key, &e);
-            }
-            Err(e) => return self.ctx.drop_malformed(key, &e),
-        };
         let start = Instant::now();
-        let out = match self.verdict(&msg) {
-            Ok(out) => out,
-            Err(e) => return self.ctx.drop_malformed(key, &e),
+        let msg = match JointStateMessage::from_bytes(bytes) {
+            Ok(m) => m,
+            Err(e) => {
+                self.ctx.drop_malformed(key, &e);
+                let refused = Decision::refused(format!("undecodable joint state: {e}"));
+                return self.publish(&refused, (0, 0), start);
+            }
         };
-        self.ctx.metrics.add("published", 1);
+        let id = (msg.stamp_ns, msg.sequence);
+        let decision = match self.decide(&msg) {
+            Ok(d) => d,
+            Err(e) => {
+                self.ctx.drop_malformed(key, &e);
+                Decision::refused(format!("joint state not checked: {e:#}"))
+            }
+        };
+        self.publish(&decision, id, start);
+    }
+
+    fn decide(&self, joints: &JointStateMessage) -> Result<Decision> {
+        anyhow::ensure!(
+            joints.names == self.names,
+            "joint names {:?} are not the arm's {:?}",
+            joints.names,
+            self.names
+        );
+        let pose = self.file.arm.forward(&joints.positions)?;
+        Ok(lock(&self.guard).decide(&pose.shapes, monotonic_ns())?)
+    }
+
+    fn publish(&self, decision: &Decision, joints: (u64, u64), start: Instant) {
+        let check_ns = start.elapsed().as_nanos() as u64;
+        let out: CollisionMessage =
+            lock(&self.guard).message(decision, &self.arm_name, joints, check_ns);
+        let m = &self.ctx.metrics;
+        m.add("published", 1);
+        m.add(VERDICT_COUNTERS[out.verdict.index()], 1);
         if out.stop {
-            self.ctx.metrics.add("stops", 1);
+            m.add("stops", 1);
         }
-        self.ctx.metrics.set("min_clearance", out.min_clearance);
-        self.ctx
-            .metrics
-            .set("check_us", start.elapsed().as_secs_f64() * 1e6);
+        m.set("min_clearance", out.min_clearance);
+        m.set("surrogate_age_ms", out.surrogate_age_ns as f64 / 1e6);
+        m.set("check_us", check_ns as f64 / 1e3);
         match out.to_bytes() {
             Ok(bytes) => {
                 if let Err(e) = self.publisher.put(bytes).wait() {
-                    self.ctx.metrics.add("publish_errors", 1);
+                    m.add("publish_errors", 1);
                     tracing::warn!("publish collision: {e}");
                 }
             }
             Err(e) => tracing::error!("encode collision: {e}"),
         }
     }
-
-    fn verdict(&self, joints: &JointStateMessage) -> Result<CollisionMessage> {
-        let start = Instant::now();
-        let pose = self.file.arm.forward(&joints.positions)?;
-        let latest = self.latest.lock().unwrap_or_else(|p| p.into_inner());
-        let (verdict, report, stamp, seq) = match latest.as_ref() {
-            None => (GuardVerdict::NoSurrogate, None, 0, 0),
-            Some(l) if unix_ns().saturating_sub(l.stamp_ns) > self.max_age_ns => {
-                (GuardVerdict::Stale, None, l.stamp_ns, l.sequence)
-            }
-            Some(l) => {
-                let report = check_arm(&l.envelope, &pose, &self.file.guard)?;
-                let v = if report.stop {
-                    GuardVerdict::Stop
-                } else {
-                    GuardVerdict::Clear
-                };
-                (v, Some(report), l.stamp_ns, l.sequence)
-            }
-        };
-        drop(latest);
-        Ok(self.message(joints, verdict, report.as_ref(), (stamp, seq), start))
-    }
-
-    fn message(
-        &self,
-        joints: &JointStateMessage,
-        verdict: GuardVerdict,
-        report: Option<&GuardReport>,
-        (surrogate_stamp_ns, surrogate_sequence): (u64, u64),
-        start: Instant,
-    ) -> CollisionMessage {
-        let links = self.file.arm.links();
-        let (min_clearance, closest_link, link_clearances) = match report {
-            Some(r) => (
-                r.min_clearance,
-                r.closest_link
-                    .and_then(|i| links.get(i))
-                    .map(|l| l.name.clone())
-                    .unwrap_or_default(),
-                links
-                    .iter()
-                    .zip(&r.links)
-                    .map(|(l, &c)| LinkClearance {
-                        link: l.name.clone(),
-                        clearance: c,
-                    })
-                    .collect(),
-            ),
-            // Without a trustworthy surrogate nothing is known to be clear.
-            None => (0.0, String::new(), Vec::new()),
-        };
-        CollisionMessage {
-            version: SCHEMA_VERSION,
-            joints_stamp_ns: joints.stamp_ns,
-            joints_sequence: joints.sequence,
-            arm: self.arm_name.clone(),
-            surrogate_stamp_ns,
-            surrogate_sequence,
-            verdict,
-            stop: verdict != GuardVerdict::Clear,
-            stop_distance: self.file.guard.stop_distance,
-            min_clearance,
-            closest_link,
-            links: link_clearances,
-            check_ns: start.elapsed().as_nanos() as u64,
-        }
-    }
 }
+
+/// Status counters per verdict, in [`GuardVerdict::ALL`](shroud_core::message::GuardVerdict::ALL) order.
+const VERDICT_COUNTERS: [&str; 6] = [
+    "verdict_clear",
+    "verdict_stop",
+    "verdict_no_surrogate",
+    "verdict_stale",
+    "verdict_unobserved",
+    "verdict_no_verdict",
+];

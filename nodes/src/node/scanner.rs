@@ -41,6 +41,10 @@ pub struct ScannerArgs {
     /// With `--scene scan-mesh`: the mesh to range-scan (.obj or .ply).
     #[arg(long)]
     pub mesh: Option<std::path::PathBuf>,
+    /// A JSON scene configuration (`shroud_sim::Scene`, as `shroud sim
+    /// --config`), instead of `--scene`, `--points` and `--seed`.
+    #[arg(long, conflicts_with_all = ["scene", "mesh"])]
+    pub config: Option<std::path::PathBuf>,
 }
 
 pub fn run(args: ScannerArgs) -> Result<()> {
@@ -57,6 +61,11 @@ pub fn run(args: ScannerArgs) -> Result<()> {
 
 /// The scene by name; `scan-mesh` orbits a range scanner around the user's mesh.
 fn scene(args: &ScannerArgs) -> Result<Scene> {
+    if let Some(path) = &args.config {
+        let scene = crate::files::read_scene_config(path)?;
+        scene.prepare()?;
+        return Ok(scene);
+    }
     if args.scene != Scene::MESH_SCENE {
         anyhow::ensure!(
             args.mesh.is_none(),
@@ -114,7 +123,10 @@ fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene, shm: bool) -> R
         }
         next += period * (behind as u32 + 1);
         let points = scene.generate(start.elapsed().as_secs_f64() * args.time_scale)?;
+        // The simulator is the sensor: its cloud enters shroud when generated.
+        let produced = Instant::now();
         let msg = CloudView::new(unix_ns(), sequence, &source, SensorPose::default(), &points)
+            .with_pipeline_ns(produced.elapsed().as_nanos() as u64)
             .aligned()?;
         let payload = writer.encode(&msg)?;
         match publisher.put(payload).wait() {

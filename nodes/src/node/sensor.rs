@@ -8,12 +8,13 @@ use crate::ingest::{
     run_can_reader, run_serial_reader, CanReaderConfig, CanSourceSpec, ReaderStats,
     SerialReaderConfig,
 };
-use crate::transport::PayloadWriter;
+use crate::transport::{unix_ns, PayloadWriter};
 use anyhow::Result;
 use clap::Args;
 use shroud_core::ingest::Scan;
-use shroud_core::message::{SensorPose, TopicKind};
+use shroud_core::message::{check_stamp_skew, max_skew_ns_from_secs, SensorPose, TopicKind};
 use std::sync::Arc;
+use std::time::Instant;
 use zenoh::qos::CongestionControl;
 use zenoh::Wait;
 
@@ -29,6 +30,10 @@ pub struct SerialNodeArgs {
     /// Stream name: clouds go to `shroud/<ns>/cloud/<stream>`.
     #[arg(long, default_value = "serial")]
     pub stream: String,
+    /// A device stamp further than this (seconds) from this node's clock is
+    /// counted as `clock_skew` (stamps are kept, never used for decisions).
+    #[arg(long, default_value_t = 5.0)]
+    pub max_skew: f64,
 }
 
 #[derive(Debug, Clone, Args)]
@@ -41,13 +46,17 @@ pub struct CanNodeArgs {
     /// Stream name: clouds go to `shroud/<ns>/cloud/<stream>`.
     #[arg(long, default_value = "can")]
     pub stream: String,
+    /// A device (or log) stamp further than this (seconds) from this node's
+    /// clock is counted as `clock_skew` (`inf`: no check, for old logs).
+    #[arg(long, default_value_t = 5.0)]
+    pub max_skew: f64,
 }
 
 pub fn run_serial(args: SerialNodeArgs) -> Result<()> {
     let config = SerialReaderConfig::new(&args.port, args.baud);
     let common = args.common.clone();
     run_node(&common, "serial", move |ctx| {
-        let mut publish = cloud_publisher(&ctx, &args.stream, &args.port)?;
+        let mut publish = cloud_publisher(&ctx, &args.stream, &args.port, args.max_skew)?;
         let stats = run_serial_reader(&config, &mut publish, ctx.stop_flag())?;
         tracing::info!("serial reader stopped: {stats}");
         Ok(())
@@ -61,7 +70,7 @@ pub fn run_can(args: CanNodeArgs) -> Result<()> {
         .map_err(|e| anyhow::anyhow!("--source {:?}: {e}", args.source))?;
     let common = args.common.clone();
     run_node(&common, "can", move |ctx| {
-        let mut publish = cloud_publisher(&ctx, &args.stream, &args.source)?;
+        let mut publish = cloud_publisher(&ctx, &args.stream, &args.source, args.max_skew)?;
         let stats = run_can_reader(
             &mut || spec.open(),
             &CanReaderConfig::default(),
@@ -79,7 +88,11 @@ fn cloud_publisher<'a>(
     ctx: &'a Arc<NodeContext>,
     stream: &str,
     device: &str,
+    max_skew: f64,
 ) -> Result<impl FnMut(Scan, &ReaderStats) + 'a> {
+    let max_skew_ns = max_skew_ns_from_secs(max_skew)
+        .ok_or_else(|| anyhow::anyhow!("--max-skew must be positive (inf: no check)"))?;
+    let device = device.to_owned();
     let key = ctx.key(TopicKind::Cloud, stream)?;
     let publisher = ctx
         .session
@@ -91,8 +104,15 @@ fn cloud_publisher<'a>(
     let source = format!("{}/{device}", ctx.name);
     let mut sequence = 0u64;
     Ok(move |scan: Scan, stats: &ReaderStats| {
+        // The scan's last byte has just been read: it enters shroud now.
+        let received = Instant::now();
+        if let Err(skew) = check_stamp_skew(scan.stamp_ns, unix_ns(), max_skew_ns) {
+            ctx.metrics.add("clock_skew", 1);
+            tracing::warn!(%device, "device {skew}");
+        }
         let published = scan
             .to_view(sequence, &source, SensorPose::default())
+            .map(|view| view.with_pipeline_ns(received.elapsed().as_nanos() as u64))
             .and_then(|view| writer.encode(&view))
             .map_err(anyhow::Error::from)
             .and_then(|b| publisher.put(b).wait().map_err(|e| anyhow::anyhow!("{e}")));

@@ -1,15 +1,21 @@
 //! zenoh transport: session configuration from the command line, the bounded
 //! drop-oldest mailbox between a subscriber and its worker, and publishing
-//! through shared memory when it is available.
+//! through shared memory when it is available; child processes tied to
+//! their parent's life.
 
 mod args;
 mod clock;
+mod lifeline;
 mod mailbox;
 mod publish;
 mod signal;
 
 pub use args::{OnOff, ZenohArgs};
 pub use clock::{monotonic_ns, unix_ns};
+pub use lifeline::{
+    die_with_parent, keep_outputs_writable, prepare_last_words, silence_broken_outputs,
+    watch_parent,
+};
 pub use mailbox::Mailbox;
 pub use publish::PayloadWriter;
 pub use signal::shutdown_signal;

@@ -1,0 +1,269 @@
+//! [`CollisionGuard`]: the latest surrogate per view in, a verdict per arm pose out.
+
+use super::combine::{combine, ViewReport};
+use super::policy::{GuardPolicy, UnobservedPolicy};
+use super::view::{check_skew, HeldSurrogate, SurrogateInput, SurrogateRejected};
+use crate::guard::{check_shapes, GuardConfig, GuardError, GuardReport, WorldShape};
+use crate::message::{CollisionMessage, GuardVerdict, LinkClearance, SCHEMA_VERSION};
+
+/// The guard's state: per view its latest accepted surrogate.
+#[derive(Debug, Clone)]
+pub struct CollisionGuard {
+    views: Vec<String>,
+    held: Vec<Option<HeldSurrogate>>,
+    links: Vec<String>,
+    policy: GuardPolicy,
+    config: GuardConfig,
+}
+
+/// The verdict for one arm pose, with what it was based on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Decision {
+    pub verdict: GuardVerdict,
+    /// Why, for a person (empty when clear).
+    pub reason: String,
+    /// Combined clearances (after motion allowances; a shape's
+    /// `leaves_domain` means no fresh view covers it); `None` without a fresh view.
+    pub report: Option<GuardReport>,
+    /// Fresh views used.
+    pub views: usize,
+    /// Stamp, sequence and age of the oldest view used (or of the newest
+    /// stale one), for the record.
+    pub oldest: Option<(u64, u64, u64)>,
+}
+
+impl Decision {
+    /// The answer to a joint state that could not be checked: stop, and say why.
+    pub fn refused(reason: impl Into<String>) -> Self {
+        Self {
+            verdict: GuardVerdict::Stop,
+            reason: reason.into(),
+            report: None,
+            views: 0,
+            oldest: None,
+        }
+    }
+}
+
+impl CollisionGuard {
+    /// A guard over the named views for an arm with the named links.
+    pub fn new(
+        views: Vec<String>,
+        links: Vec<String>,
+        policy: GuardPolicy,
+        config: GuardConfig,
+    ) -> Result<Self, GuardError> {
+        policy.validate()?;
+        config.validate()?;
+        if views.is_empty() {
+            return Err(GuardError::BadConfig(
+                "the guard needs at least one view".into(),
+            ));
+        }
+        if let Some(dup) = views
+            .iter()
+            .enumerate()
+            .find(|(i, v)| views[..*i].contains(v))
+        {
+            return Err(GuardError::BadConfig(format!(
+                "view {:?} is given twice",
+                dup.1
+            )));
+        }
+        Ok(Self {
+            held: vec![None; views.len()],
+            views,
+            links,
+            policy,
+            config,
+        })
+    }
+
+    pub fn views(&self) -> &[String] {
+        &self.views
+    }
+
+    pub fn config(&self) -> &GuardConfig {
+        &self.config
+    }
+
+    pub fn policy(&self) -> &GuardPolicy {
+        &self.policy
+    }
+
+    /// Takes a surrogate of `view` that reached the guard at `arrived_ns`
+    /// (monotonic), unless its source stamp is too far from `wall_ns` (the
+    /// guard's wall clock): then the view keeps its previous surrogate, which
+    /// ages out.
+    pub fn accept(
+        &mut self,
+        view: usize,
+        input: SurrogateInput,
+        arrived_ns: u64,
+        wall_ns: u64,
+    ) -> Result<(), SurrogateRejected> {
+        let slot = self
+            .held
+            .get_mut(view)
+            .ok_or(SurrogateRejected::UnknownView(view))?;
+        check_skew(input.stamp_ns, wall_ns, &self.policy)?;
+        *slot = Some(HeldSurrogate { input, arrived_ns });
+        Ok(())
+    }
+
+    /// The verdict for world `shapes` (carried by links `0..links`) at `now_ns`.
+    pub fn decide(&self, shapes: &[WorldShape], now_ns: u64) -> Result<Decision, GuardError> {
+        let held: Vec<&HeldSurrogate> = self.held.iter().flatten().collect();
+        if held.is_empty() {
+            let reason = format!("no surrogate yet on {}", self.views.join(", "));
+            return Ok(self.without_report(GuardVerdict::NoSurrogate, reason, None));
+        }
+        let fresh: Vec<&HeldSurrogate> = held
+            .iter()
+            .copied()
+            .filter(|h| h.age_ns(now_ns) <= self.policy.max_age_ns)
+            .collect();
+        if fresh.is_empty() {
+            let newest = held.iter().min_by_key(|h| h.age_ns(now_ns)).copied();
+            return Ok(self.stale(newest, now_ns));
+        }
+        let mut reports = Vec::with_capacity(fresh.len());
+        for h in &fresh {
+            let report = check_shapes(&h.input.envelope, shapes, self.links.len(), &self.config)?;
+            // How far an obstacle may have moved since the cloud was taken.
+            let allowance = self.config.max_obstacle_speed * h.age_ns(now_ns) as f64 * 1e-9;
+            reports.push(ViewReport { report, allowance });
+        }
+        let report = combine(&reports, self.links.len(), &self.config);
+        let oldest = fresh
+            .iter()
+            .max_by_key(|h| h.age_ns(now_ns))
+            .map(|h| record(h, now_ns));
+        let (verdict, reason) = self.judge(&report);
+        Ok(Decision {
+            verdict,
+            reason,
+            report: Some(report),
+            views: fresh.len(),
+            oldest,
+        })
+    }
+
+    fn judge(&self, report: &GuardReport) -> (GuardVerdict, String) {
+        let link = |i: Option<usize>| {
+            i.and_then(|i| self.links.get(i))
+                .map_or("?", String::as_str)
+                .to_owned()
+        };
+        if report.stop {
+            let reason = format!(
+                "link {} at {:.3} m, within the stop distance {:.3} m",
+                link(report.closest_link),
+                report.min_clearance,
+                self.config.stop_distance
+            );
+            return (GuardVerdict::Stop, reason);
+        }
+        if report.leaves_domain && self.policy.unobserved == UnobservedPolicy::Stop {
+            let first = report
+                .shapes
+                .iter()
+                .find(|s| s.leaves_domain)
+                .map(|s| s.link);
+            let reason = format!(
+                "link {} reaches space no fresh surrogate covers",
+                link(first)
+            );
+            return (GuardVerdict::Unobserved, reason);
+        }
+        (GuardVerdict::Clear, String::new())
+    }
+
+    fn stale(&self, newest: Option<&HeldSurrogate>, now_ns: u64) -> Decision {
+        let age = newest.map_or(0, |h| h.age_ns(now_ns));
+        let reason = format!(
+            "newest surrogate is {:.3} s old (max {:.3} s)",
+            age as f64 / 1e9,
+            self.policy.max_age_ns as f64 / 1e9
+        );
+        self.without_report(
+            GuardVerdict::Stale,
+            reason,
+            newest.map(|h| record(h, now_ns)),
+        )
+    }
+
+    fn without_report(
+        &self,
+        verdict: GuardVerdict,
+        reason: String,
+        oldest: Option<(u64, u64, u64)>,
+    ) -> Decision {
+        Decision {
+            verdict,
+            reason,
+            report: None,
+            views: 0,
+            oldest,
+        }
+    }
+
+    /// The wire message of `decision` for joint state (`stamp`, `sequence`).
+    pub fn message(
+        &self,
+        decision: &Decision,
+        arm: &str,
+        (joints_stamp_ns, joints_sequence): (u64, u64),
+        check_ns: u64,
+    ) -> CollisionMessage {
+        let (stamp, sequence, age) = decision.oldest.unwrap_or_default();
+        let (min_clearance, closest_link, links, unobserved) = match &decision.report {
+            Some(r) => (
+                r.min_clearance,
+                r.closest_link
+                    .and_then(|i| self.links.get(i))
+                    .cloned()
+                    .unwrap_or_default(),
+                self.link_clearances(r),
+                r.leaves_domain,
+            ),
+            // Without a usable surrogate nothing is known to be clear.
+            None => (0.0, String::new(), Vec::new(), false),
+        };
+        CollisionMessage {
+            version: SCHEMA_VERSION,
+            joints_stamp_ns,
+            joints_sequence,
+            arm: arm.to_owned(),
+            surrogate_stamp_ns: stamp,
+            surrogate_sequence: sequence,
+            surrogate_age_ns: age,
+            views: decision.views as u32,
+            verdict: decision.verdict,
+            stop: decision.verdict != GuardVerdict::Clear,
+            reason: decision.reason.clone(),
+            stop_distance: self.config.stop_distance,
+            min_clearance,
+            closest_link,
+            unobserved,
+            links,
+            check_ns,
+        }
+    }
+
+    fn link_clearances(&self, r: &GuardReport) -> Vec<LinkClearance> {
+        self.links
+            .iter()
+            .enumerate()
+            .map(|(i, name)| LinkClearance {
+                link: name.clone(),
+                clearance: r.links.get(i).copied().unwrap_or(0.0),
+                unobserved: r.shapes.iter().any(|s| s.link == i && s.leaves_domain),
+            })
+            .collect()
+    }
+}
+
+fn record(h: &HeldSurrogate, now_ns: u64) -> (u64, u64, u64) {
+    (h.input.stamp_ns, h.input.sequence, h.age_ns(now_ns))
+}

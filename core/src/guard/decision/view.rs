@@ -1,0 +1,67 @@
+//! One view: the latest surrogate of one stream, when it reached the guard, and
+//! how old its data was then.
+
+use super::policy::GuardPolicy;
+use crate::guard::Envelope;
+use crate::message::{check_stamp_skew, StampSkew};
+
+/// A certified surrogate as the guard takes it in.
+#[derive(Debug, Clone)]
+pub struct SurrogateInput {
+    pub envelope: Envelope,
+    /// The source cloud's stamp (the device's word: checked for skew, kept
+    /// for the record) and sequence.
+    pub stamp_ns: u64,
+    pub sequence: u64,
+    /// Time the data had spent in shroud nodes before the surrogate was
+    /// published, as they measured it on their own clocks.
+    pub pipeline_ns: u64,
+}
+
+/// Why a surrogate was not taken.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SurrogateRejected {
+    /// Its source stamp is further from the guard's wall clock than the
+    /// policy allows.
+    #[error("source {0}: not trusted")]
+    ClockSkew(StampSkew),
+    /// No such view.
+    #[error("no view {0}")]
+    UnknownView(usize),
+}
+
+impl SurrogateRejected {
+    /// The status counter this fault is counted under.
+    pub fn counter(&self) -> &'static str {
+        match self {
+            Self::ClockSkew(_) => "clock_skew",
+            Self::UnknownView(_) => "unknown_view",
+        }
+    }
+}
+
+/// The latest surrogate of a view and its arrival on the guard's clock.
+#[derive(Debug, Clone)]
+pub(super) struct HeldSurrogate {
+    pub input: SurrogateInput,
+    pub arrived_ns: u64,
+}
+
+impl HeldSurrogate {
+    /// Age of the data at `now_ns`: the upstream pipeline delay plus the time
+    /// since it arrived.
+    pub fn age_ns(&self, now_ns: u64) -> u64 {
+        now_ns
+            .saturating_sub(self.arrived_ns)
+            .saturating_add(self.input.pipeline_ns)
+    }
+}
+
+/// Checks a surrogate's source stamp against the guard's wall clock.
+pub(super) fn check_skew(
+    stamp_ns: u64,
+    wall_ns: u64,
+    policy: &GuardPolicy,
+) -> Result<(), SurrogateRejected> {
+    check_stamp_skew(stamp_ns, wall_ns, policy.max_skew_ns).map_err(SurrogateRejected::ClockSkew)
+}

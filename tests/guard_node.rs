@@ -1,0 +1,367 @@
+//! The path from surrogate to stop, end to end with real processes: a guard
+//! killed with SIGKILL halts the arm within its deadline (the arm's deadman),
+//! a partition between arm and guard halts it too, and a cloud stamped an
+//! hour in the future is a counted fault, not a fresh surrogate.
+
+mod common;
+
+use common::{
+    alive, free_port, hub, inbox, joint_spread, joint_spread_if_any, wiring, Inbox, Proc,
+};
+use shroud_core::message::{CloudMessage, NodeStatusMessage, SurrogateMessage};
+use shroud_core::surrogate::{fit_surrogate, FitOptions, Sides};
+use std::io::{Read, Write};
+use std::net::{TcpListener, TcpStream};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use zenoh::Wait;
+
+const LONG: Duration = Duration::from_secs(60);
+const ARM_FILE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/launch/arms/demo_arm.toml");
+
+/// A horizontal sheet of points at height `z` over [-1, 1]^2.
+fn sheet(z: f32) -> Vec<[f32; 3]> {
+    (0..40 * 40)
+        .map(|i| {
+            [
+                (i % 40) as f32 / 19.5 - 1.0,
+                (i / 40) as f32 / 19.5 - 1.0,
+                z + 0.01 * ((i * 7) % 5) as f32,
+            ]
+        })
+        .collect()
+}
+
+/// A certified sandwich of a sheet far below the arm, as the fit node sends it.
+fn far_surrogate(sequence: u64) -> Vec<u8> {
+    let options = FitOptions {
+        cols: 8,
+        rows: 8,
+        sides: Sides::Sandwich,
+        ..FitOptions::default()
+    };
+    let surrogate = fit_surrogate(&sheet(-2.0), &options).unwrap();
+    SurrogateMessage::from_surrogate(&surrogate, common::unix_ns(), sequence, "test", 1)
+        .to_bytes()
+        .unwrap()
+}
+
+/// The guard args every test uses: the sheet covers only [-1, 1]^2, and the arm
+/// reaches past it, so unobserved space is ignored here.
+fn guard_args(surrogate: &str) -> Vec<String> {
+    [
+        "node",
+        "guard",
+        "--arm-file",
+        ARM_FILE,
+        "--surrogate",
+        surrogate,
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .chain(["--unobserved".into(), "ignore".into()])
+    .collect()
+}
+
+fn arm_args() -> Vec<String> {
+    ["node", "arm", "--arm-file", ARM_FILE, "--rate", "50"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect()
+}
+
+fn start(args: &[String], wiring: &[&str]) -> Proc {
+    let mut all: Vec<&str> = args.iter().map(String::as_str).collect();
+    all.extend_from_slice(wiring);
+    Proc::start(&all)
+}
+
+/// The latest status of `node` seen in `inbox` within `window`.
+fn status_within(inbox: &Inbox, window: Duration) -> Option<NodeStatusMessage> {
+    let start = Instant::now();
+    let mut latest = None;
+    while start.elapsed() < window {
+        if let Ok(Some(s)) = inbox.recv_timeout(Duration::from_millis(50)) {
+            latest = NodeStatusMessage::from_bytes(&s.payload().to_bytes()).ok();
+        }
+    }
+    latest
+}
+
+/// Publishes a fresh far surrogate every 100 ms until `stop`.
+fn keep_fresh(
+    session: zenoh::Session,
+    key: String,
+    stop: Arc<AtomicBool>,
+) -> std::thread::JoinHandle<()> {
+    std::thread::spawn(move || {
+        let mut sequence = 0;
+        while !stop.load(Ordering::Relaxed) {
+            let _ = session.put(&key, far_surrogate(sequence)).wait();
+            sequence += 1;
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    })
+}
+
+/// Waits until the arm moves (its deadman has a fresh clear).
+fn wait_moving(joints: &Inbox, what: &str, procs: &[&Proc]) {
+    let deadline = Instant::now() + LONG;
+    while joint_spread_if_any(joints, Duration::from_millis(300)).is_none_or(|s| s <= 1e-6) {
+        assert!(
+            Instant::now() < deadline,
+            "{what}: the arm never moved; output:\n{}",
+            procs
+                .iter()
+                .map(|p| p.output())
+                .collect::<Vec<_>>()
+                .join("\n---\n")
+        );
+    }
+}
+
+/// Waits until the arm's status says it halted for want of a verdict, then
+/// checks that it holds still.
+fn assert_halts_for_no_verdict(status: &Inbox, joints: &Inbox, arm: &Proc) {
+    let deadline = Instant::now() + Duration::from_secs(10);
+    loop {
+        let s = status_within(status, Duration::from_millis(300));
+        if s.as_ref()
+            .is_some_and(|s| s.counter("halts_no_verdict") > 0 && s.gauge("halted") == Some(1.0))
+        {
+            break;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "the arm did not halt for want of a verdict: {s:?}\n{}",
+            arm.output()
+        );
+    }
+    assert_eq!(
+        joint_spread(joints, Duration::from_millis(500)),
+        0.0,
+        "the halted arm holds still"
+    );
+}
+
+#[test]
+fn a_killed_guard_halts_the_arm_within_its_deadline() {
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+    let session = hub(&endpoint);
+    let ns = "e2e-deadman";
+    let joints = inbox(&session, format!("shroud/{ns}/joints/demo_arm"));
+    let status = inbox(&session, format!("shroud/{ns}/status/arm"));
+    let stop = Arc::new(AtomicBool::new(false));
+    let feeder = keep_fresh(
+        session.clone(),
+        format!("shroud/{ns}/surrogate/far"),
+        stop.clone(),
+    );
+    let w = wiring(&endpoint, ns);
+    let guard = start(&guard_args("far"), &w);
+    let arm = start(&arm_args(), &w);
+    wait_moving(&joints, "guard running", &[&guard, &arm]);
+    guard.signal(libc::SIGKILL);
+    assert_halts_for_no_verdict(&status, &joints, &arm);
+    assert!(alive(arm.pid()), "the arm node itself keeps running");
+    stop.store(true, Ordering::Relaxed);
+    feeder.join().unwrap();
+}
+
+/// Publishes the far sheet as a cloud stamped `stamp_ns`.
+fn put_sheet(session: &zenoh::Session, ns: &str, stamp_ns: u64, sequence: u64) {
+    let cloud = CloudMessage::new(stamp_ns, sequence, "test", Default::default(), &sheet(-2.0));
+    let key = format!("shroud/{ns}/cloud/future");
+    session.put(key, cloud.to_bytes().unwrap()).wait().unwrap();
+}
+
+#[test]
+fn a_cloud_stamped_an_hour_ahead_is_a_counted_fault_not_a_fresh_surrogate() {
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+    let session = hub(&endpoint);
+    let ns = "e2e-skew";
+    let verdicts = inbox(&session, format!("shroud/{ns}/collision/demo_arm"));
+    let status = inbox(&session, format!("shroud/{ns}/status/guard"));
+    let w = wiring(&endpoint, ns);
+    let fit = Proc::start(
+        &[
+            &[
+                "node", "fit", "--input", "future", "--grid", "8x8", "--side", "sandwich",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let guard = start(&guard_args("future"), &w);
+    let arm = start(&arm_args(), &w);
+    let hour_ahead = 3_600_000_000_000u64;
+    let deadline = Instant::now() + LONG;
+    let mut sequence = 0;
+    let faults = loop {
+        assert!(
+            Instant::now() < deadline,
+            "no clock_skew fault counted:\n{}\n{}",
+            fit.output(),
+            guard.output()
+        );
+        put_sheet(&session, ns, common::unix_ns() + hour_ahead, sequence);
+        sequence += 1;
+        if let Some(s) = status_within(&status, Duration::from_millis(150)) {
+            if s.counter("clock_skew") >= 3 {
+                break s;
+            }
+        }
+    };
+    assert_eq!(
+        faults.counter("surrogates"),
+        0,
+        "no skewed surrogate was taken"
+    );
+    // Every verdict meanwhile says there is nothing to vouch with.
+    let seen: Vec<_> = verdicts.drain().collect();
+    assert!(!seen.is_empty(), "the guard answers every joint state");
+    for s in &seen {
+        let v =
+            shroud_core::message::CollisionMessage::from_bytes(&s.payload().to_bytes()).unwrap();
+        assert!(v.stop, "a skewed surrogate never clears: {v:?}");
+    }
+    // Honest stamps: the same pipeline now clears the far sheet.
+    let deadline = Instant::now() + LONG;
+    loop {
+        assert!(
+            Instant::now() < deadline,
+            "honest stamps never cleared:\n{}",
+            guard.output()
+        );
+        put_sheet(&session, ns, common::unix_ns(), sequence);
+        sequence += 1;
+        if let Ok(Some(s)) = verdicts.recv_timeout(Duration::from_millis(100)) {
+            let v = shroud_core::message::CollisionMessage::from_bytes(&s.payload().to_bytes())
+                .unwrap();
+            if !v.stop {
+                assert!(v.surrogate_age_ns < 1_000_000_000, "{v:?}");
+                break;
+            }
+        }
+    }
+    drop(arm);
+}
+
+/// A TCP relay that copies bytes both ways while `forwarding` is set, and
+/// swallows them otherwise (the connections stay up: a silent partition).
+fn relay(listen: u16, target: u16, forwarding: Arc<AtomicBool>) {
+    let listener = TcpListener::bind(("127.0.0.1", listen)).unwrap();
+    std::thread::spawn(move || {
+        for inbound in listener.incoming().flatten() {
+            let Ok(outbound) = TcpStream::connect(("127.0.0.1", target)) else {
+                continue;
+            };
+            for (from, to) in [
+                (inbound.try_clone().unwrap(), outbound.try_clone().unwrap()),
+                (outbound, inbound),
+            ] {
+                let forwarding = forwarding.clone();
+                std::thread::spawn(move || pump(from, to, &forwarding));
+            }
+        }
+    });
+}
+
+fn pump(mut from: TcpStream, mut to: TcpStream, forwarding: &AtomicBool) {
+    let mut buf = vec![0u8; 64 * 1024];
+    while let Ok(n) = from.read(&mut buf) {
+        if n == 0 {
+            break;
+        }
+        if forwarding.load(Ordering::Relaxed) && to.write_all(&buf[..n]).is_err() {
+            break;
+        }
+    }
+}
+
+/// A zenoh JSON5 file that turns off gossip scouting, so that peers talk only
+/// over the endpoints they are given (the relay), not around it.
+fn no_gossip(dir: &std::path::Path) -> String {
+    let path = dir.join("no-gossip.json5");
+    std::fs::write(&path, "{ scouting: { gossip: { enabled: false } } }").unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+#[test]
+fn a_partition_between_arm_and_guard_halts_the_arm() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = no_gossip(dir.path());
+    let (hub_port, guard_port, relay_port, arm_port) =
+        (free_port(), free_port(), free_port(), free_port());
+    let hub_endpoint = format!("tcp/127.0.0.1:{hub_port}");
+    let session = hub(&hub_endpoint);
+    let ns = "e2e-partition";
+    let stop = Arc::new(AtomicBool::new(false));
+    let feeder = keep_fresh(
+        session.clone(),
+        format!("shroud/{ns}/surrogate/far"),
+        stop.clone(),
+    );
+    let forwarding = Arc::new(AtomicBool::new(true));
+    relay(relay_port, guard_port, forwarding.clone());
+    // The guard hears surrogates from the hub and the arm through the relay
+    // only; the test watches the arm from its own side of the partition.
+    let guard_listen = format!("tcp/127.0.0.1:{guard_port}");
+    let guard_wiring = [
+        "--connect",
+        &hub_endpoint,
+        "--listen",
+        &guard_listen,
+        "--multicast",
+        "off",
+        "--zenoh-config",
+        &config,
+        "--namespace",
+        ns,
+    ];
+    let guard = start(&guard_args("far"), &guard_wiring);
+    let (relay_endpoint, arm_listen) = (
+        format!("tcp/127.0.0.1:{relay_port}"),
+        format!("tcp/127.0.0.1:{arm_port}"),
+    );
+    let arm_wiring = [
+        "--connect",
+        &relay_endpoint,
+        "--listen",
+        &arm_listen,
+        "--multicast",
+        "off",
+        "--zenoh-config",
+        &config,
+        "--namespace",
+        ns,
+    ];
+    let arm = start(&arm_args(), &arm_wiring);
+    let observer = {
+        let mut c = zenoh::Config::default();
+        for (k, v) in [
+            ("mode", "\"peer\"".to_string()),
+            ("connect/endpoints", format!("[\"{arm_listen}\"]")),
+            ("listen/endpoints", "[]".to_string()),
+            ("scouting/multicast/enabled", "false".to_string()),
+            ("scouting/gossip/enabled", "false".to_string()),
+            // The arm may not listen yet: keep trying.
+            ("connect/exit_on_failure", "false".to_string()),
+        ] {
+            c.insert_json5(k, &v).unwrap();
+        }
+        zenoh::open(c).wait().unwrap()
+    };
+    let joints = inbox(&observer, format!("shroud/{ns}/joints/demo_arm"));
+    let status = inbox(&observer, format!("shroud/{ns}/status/arm"));
+    wait_moving(&joints, "relay forwarding", &[&guard, &arm]);
+    forwarding.store(false, Ordering::Relaxed);
+    assert_halts_for_no_verdict(&status, &joints, &arm);
+    assert!(
+        alive(guard.pid()),
+        "the guard is alive: only the link failed"
+    );
+    stop.store(true, Ordering::Relaxed);
+    feeder.join().unwrap();
+}
