@@ -595,3 +595,34 @@ fn limit_surface_clouds_fit_over_their_own_quad_mesh() {
         "cannot read",
     );
 }
+
+/// Log filters: `--log` wins over RUST_LOG, and a filter that does not parse
+/// is a named error wherever it comes from, never a silent fallback.
+#[test]
+fn bad_log_filters_are_named_errors() {
+    fails_with(
+        shroud(&["--log", "shroud=loud", "node", "list"]),
+        "invalid log filter \"shroud=loud\" from --log",
+    );
+    let from_env = Command::new(env!("CARGO_BIN_EXE_shroud"))
+        .args(["node", "list"])
+        .env("RUST_LOG", "shroud=loud")
+        .output()
+        .unwrap();
+    fails_with(from_env, "from RUST_LOG");
+    let overridden = Command::new(env!("CARGO_BIN_EXE_shroud"))
+        .args(["--log", "warn", "sim", "moving-spheres", "--points", "100"])
+        .args(["-o", "/dev/null/none.ply"])
+        .env("RUST_LOG", "shroud=loud")
+        .output()
+        .unwrap();
+    let (_, stderr) = text(&overridden);
+    assert!(!stderr.contains("invalid log filter"), "{stderr}");
+    let dir = tempfile::tempdir().unwrap();
+    let file = path(dir.path(), "g.toml");
+    std::fs::write(&file, "[[node]]\nname = \"x\"\nrun = \"fit\"\n").unwrap();
+    fails_with(
+        shroud(&["launch", s(&file), "--node-log", "x=loud", "--check"]),
+        "invalid --node-log filter",
+    );
+}

@@ -121,15 +121,27 @@ fn wait_moving(joints: &Inbox, what: &str, procs: &[&Proc]) {
     }
 }
 
-/// Waits until the arm's status says it halted for want of a verdict, then
-/// checks that it holds still.
-fn assert_halts_for_no_verdict(status: &Inbox, joints: &Inbox, arm: &Proc) {
+/// How many times the arm has halted for want of a verdict so far (its start,
+/// waiting for the first verdict, counts once).
+fn no_verdict_halts(status: &Inbox) -> u64 {
+    let deadline = Instant::now() + LONG;
+    loop {
+        if let Some(s) = status_within(status, Duration::from_millis(300)) {
+            return s.counter("halts_no_verdict");
+        }
+        assert!(Instant::now() < deadline, "no status from the arm");
+    }
+}
+
+/// Waits until the arm's status says it halted for want of a verdict once more
+/// than `before`, then checks that it holds still.
+fn assert_halts_for_no_verdict(status: &Inbox, joints: &Inbox, arm: &Proc, before: u64) {
     let deadline = Instant::now() + Duration::from_secs(10);
     loop {
         let s = status_within(status, Duration::from_millis(300));
-        if s.as_ref()
-            .is_some_and(|s| s.counter("halts_no_verdict") > 0 && s.gauge("halted") == Some(1.0))
-        {
+        if s.as_ref().is_some_and(|s| {
+            s.counter("halts_no_verdict") > before && s.gauge("halted") == Some(1.0)
+        }) {
             break;
         }
         assert!(
@@ -162,8 +174,9 @@ fn a_killed_guard_halts_the_arm_within_its_deadline() {
     let guard = start(&guard_args("far"), &w);
     let arm = start(&arm_args(), &w);
     wait_moving(&joints, "guard running", &[&guard, &arm]);
+    let before = no_verdict_halts(&status);
     guard.signal(libc::SIGKILL);
-    assert_halts_for_no_verdict(&status, &joints, &arm);
+    assert_halts_for_no_verdict(&status, &joints, &arm, before);
     assert!(alive(arm.pid()), "the arm node itself keeps running");
     stop.store(true, Ordering::Relaxed);
     feeder.join().unwrap();
@@ -356,8 +369,9 @@ fn a_partition_between_arm_and_guard_halts_the_arm() {
     let joints = inbox(&observer, format!("shroud/{ns}/joints/demo_arm"));
     let status = inbox(&observer, format!("shroud/{ns}/status/arm"));
     wait_moving(&joints, "relay forwarding", &[&guard, &arm]);
+    let before = no_verdict_halts(&status);
     forwarding.store(false, Ordering::Relaxed);
-    assert_halts_for_no_verdict(&status, &joints, &arm);
+    assert_halts_for_no_verdict(&status, &joints, &arm, before);
     assert!(
         alive(guard.pid()),
         "the guard is alive: only the link failed"

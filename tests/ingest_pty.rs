@@ -6,7 +6,7 @@
 use shroud_core::ingest::can::{CanFrame, CanSensorConfig};
 use shroud_core::ingest::serial::{PointEncoding, SerialEncoder};
 use shroud_core::ingest::{ErrorKind, Scan};
-use shroud_nodes::ingest::cli::{run_sensor_sim_with, SensorSimArgs, SimFormat};
+use shroud_nodes::cli::sensor_sim::{run_sensor_sim_with, SensorSimArgs, SimFormat};
 use shroud_nodes::ingest::pty::Pty;
 use shroud_nodes::ingest::sim::{CandumpWriter, ScanSink, SerialSensorWriter, SlcanWriter};
 use shroud_nodes::ingest::{

@@ -102,7 +102,7 @@ fn a_killed_launcher_leaves_no_orphan() {
     assert!(pids.iter().all(|&p| alive(p)));
     launcher.signal(libc::SIGKILL);
     launcher.wait_exit(LONG);
-    assert_all_gone(&pids, Duration::from_secs(10));
+    assert_all_gone(&pids, Duration::from_secs(15));
 }
 
 /// The launcher killed outright while its parent does not reap it (it stays a
@@ -119,7 +119,7 @@ fn a_killed_unreaped_launcher_leaves_no_live_node() {
         // Both nodes running: the fitter has certified the scanner's cloud.
         launcher.expect_line("certified 2000 pts", LONG);
         launcher.signal(libc::SIGKILL);
-        assert_all_gone(&nodes.0, Duration::from_secs(10));
+        assert_all_gone(&nodes.0, Duration::from_secs(15));
         assert!(
             std::path::Path::new(&format!("/proc/{}", launcher.pid())).exists(),
             "the launcher is still unreaped"

@@ -658,7 +658,8 @@ mod guard {
     }
 
     /// The whole decision over one to three views of the moving spheres, taken
-    /// at `t0` and judged at `t1` with the scene's true speed bound: every
+    /// at `t0` and 50 and 100 ms before it, and judged at `t1` with the
+    /// scene's true speed bound: every
     /// combined clearance is at most the shape's distance to the scene at
     /// `t1`, and a `clear` never hides a shape within the stop distance of it.
     /// Counted, so that the test cannot pass by never clearing.
@@ -678,14 +679,24 @@ mod guard {
             let speed = scene.paths.iter().map(speed_bound).fold(0.0, f64::max);
             let t0 = seed as f64 * 1.7;
             let points = scene.generate(t0).unwrap();
+            // View k sees the same points 50k ms earlier (carried back along
+            // their spheres' paths): views of one scene at different ages.
             let views: Vec<SurrogateInput> = directions
                 .iter()
-                .map(|&d| SurrogateInput {
-                    envelope: Envelope::new(&fit(&points, Sides::Sandwich, d, 16).unwrap())
-                        .unwrap(),
-                    stamp_ns: 0,
-                    sequence: seed,
-                    pipeline_ns: 20_000_000,
+                .enumerate()
+                .map(|(k, &d)| {
+                    let earlier = t0 - 0.05 * k as f64;
+                    let seen: Vec<[f32; 3]> = moved_cloud(&scene, &points, t0, earlier)
+                        .iter()
+                        .map(|p| p.as_vec3().to_array())
+                        .collect();
+                    let surrogate = fit(&seen, Sides::Sandwich, d, 16).unwrap();
+                    SurrogateInput {
+                        envelope: Envelope::new(&surrogate).unwrap(),
+                        stamp_ns: 0,
+                        sequence: seed,
+                        pipeline_ns: 20_000_000 + 50_000_000 * k as u64,
+                    }
                 })
                 .collect();
             let mut rng = Pcg64::seed_from_u64(seed);

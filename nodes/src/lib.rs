@@ -2,6 +2,7 @@
 //! and write files, move messages over zenoh, call `shroud-core`, and print what
 //! happened.
 
+pub mod args;
 pub mod bench;
 pub mod cli;
 pub mod files;

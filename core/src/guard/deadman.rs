@@ -6,13 +6,17 @@
 //!
 //! Time is an argument (nanoseconds on the consumer's own monotonic clock), so
 //! the deadline covers the whole round trip: joint state out, check, verdict
-//! back. A `stop` halts at once, whatever joint state it answers; a `clear`
-//! counts only for a joint state sent after the last stop's.
+//! back. A verdict is matched to a joint state by sequence *and* stamp, so a
+//! restarted consumer or another one on the same stream never clears this one.
+//! A `stop` halts at once, whatever joint state it answers (or none), and only a
+//! `clear` for a joint state sent after the stop arrived releases it: a stop
+//! that arrives late, after a clear for a newer joint state, still halts.
 
 use crate::message::GuardVerdict;
 use std::collections::VecDeque;
 
-/// Joint states remembered: more than any deadline spans at 1 kHz / 3 periods.
+/// Joint states remembered (sequence, stamp, send time): 256 is over 5 s at
+/// 50 Hz and 0.25 s at 1 kHz, more than any sensible deadline.
 const REMEMBERED: usize = 256;
 
 /// What the consumer may do now.
@@ -27,26 +31,35 @@ pub enum Motion {
 /// How a verdict was taken.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum VerdictUse {
-    /// It answers one of the recent joint states and was applied.
+    /// It was applied (every stop is; a clear that answers one of the recent
+    /// joint states and is newer than the last stop).
     Applied,
-    /// A `clear` for a joint state this deadman does not remember (too old, or
-    /// another consumer's): ignored.
+    /// A `clear` for a joint state this deadman does not remember (too old,
+    /// another consumer's, or a stamp that does not match): ignored.
     Unknown,
-    /// A `clear` older than a stop already received: ignored.
+    /// A `clear` for a joint state sent before the last stop arrived: ignored.
     Superseded,
+}
+
+/// One joint state sent.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Sent {
+    sequence: u64,
+    stamp_ns: u64,
+    at_ns: u64,
 }
 
 /// See the module documentation.
 #[derive(Debug, Clone)]
 pub struct Deadman {
     deadline_ns: u64,
-    /// (sequence, sent at), oldest first.
-    sent: VecDeque<(u64, u64)>,
-    /// The newest clear applied: its joint state's sequence and send time.
-    clear: Option<(u64, u64)>,
-    /// The newest stop: the sequence it answers (or the newest one sent when
-    /// it answers none we know) and its verdict.
-    stop: Option<(u64, GuardVerdict)>,
+    /// Oldest first.
+    sent: VecDeque<Sent>,
+    /// The newest clear applied.
+    clear: Option<Sent>,
+    /// The newest stop: the newest sequence sent when it arrived (a clear must
+    /// answer a later one) and its verdict.
+    stop: Option<(Option<u64>, GuardVerdict)>,
 }
 
 impl Deadman {
@@ -65,49 +78,64 @@ impl Deadman {
         self.deadline_ns
     }
 
-    /// The consumer published joint state `sequence` at `now_ns`. Sequences
-    /// must increase.
-    pub fn sent(&mut self, sequence: u64, now_ns: u64) {
+    /// The consumer published joint state (`sequence`, `stamp_ns`) at `now_ns`.
+    /// Sequences must increase.
+    pub fn sent(&mut self, sequence: u64, stamp_ns: u64, now_ns: u64) {
         if self.sent.len() == REMEMBERED {
             self.sent.pop_front();
         }
-        self.sent.push_back((sequence, now_ns));
+        self.sent.push_back(Sent {
+            sequence,
+            stamp_ns,
+            at_ns: now_ns,
+        });
     }
 
-    /// A verdict arrived for joint state `sequence`.
-    pub fn verdict(&mut self, sequence: u64, verdict: GuardVerdict) -> VerdictUse {
-        let known = self.sent.iter().find(|(s, _)| *s == sequence).copied();
+    /// A verdict arrived for joint state (`sequence`, `stamp_ns`).
+    pub fn verdict(&mut self, sequence: u64, stamp_ns: u64, verdict: GuardVerdict) -> VerdictUse {
         if verdict != GuardVerdict::Clear {
-            // A stop is never ignored: one we cannot place answers, at worst,
-            // the newest joint state, so that only later ones can clear it.
-            let newest = self.sent.back().map_or(0, |(s, _)| *s);
-            let at = known.map_or(newest, |(s, _)| s);
-            if self.stop.is_none_or(|(s, _)| at >= s) {
-                self.stop = Some((at, verdict));
-            }
+            // Whatever it answers, only joint states sent from now on can
+            // clear it.
+            let newest = self.sent.back().map(|s| s.sequence);
+            let later = match self.stop {
+                Some((Some(s), _)) => newest.map(|n| n.max(s)),
+                _ => newest,
+            };
+            self.stop = Some((later, verdict));
             return VerdictUse::Applied;
         }
-        let Some((seq, sent_at)) = known else {
+        let known = self
+            .sent
+            .iter()
+            .find(|s| s.sequence == sequence && s.stamp_ns == stamp_ns)
+            .copied();
+        let Some(answered) = known else {
             return VerdictUse::Unknown;
         };
-        if self.stop.is_some_and(|(s, _)| seq <= s) {
+        let after_stop = match self.stop {
+            None => true,
+            Some((None, _)) => true,
+            Some((Some(s), _)) => answered.sequence > s,
+        };
+        if !after_stop {
             return VerdictUse::Superseded;
         }
-        if self.clear.is_none_or(|(s, _)| seq > s) {
-            self.clear = Some((seq, sent_at));
+        if self.clear.is_none_or(|c| answered.sequence > c.sequence) {
+            self.clear = Some(answered);
         }
         VerdictUse::Applied
     }
 
     /// What the consumer may do at `now_ns`.
     pub fn motion(&self, now_ns: u64) -> Motion {
-        match (self.clear, self.stop) {
-            (_, Some((stop_seq, v))) if self.clear.is_none_or(|(s, _)| s <= stop_seq) => {
-                Motion::Halt(v)
-            }
-            (Some((_, sent_at)), _) if now_ns.saturating_sub(sent_at) <= self.deadline_ns => {
-                Motion::Move
-            }
+        let clear = self.clear.filter(|c| match self.stop {
+            None => true,
+            Some((None, _)) => true,
+            Some((Some(s), _)) => c.sequence > s,
+        });
+        match (clear, self.stop) {
+            (Some(c), _) if now_ns.saturating_sub(c.at_ns) <= self.deadline_ns => Motion::Move,
+            (None, Some((_, v))) => Motion::Halt(v),
             _ => Motion::Halt(GuardVerdict::NoVerdict),
         }
     }
@@ -118,34 +146,45 @@ mod tests {
     use super::*;
 
     const MS: u64 = 1_000_000;
+    const CLEAR: GuardVerdict = GuardVerdict::Clear;
+    const STOP: GuardVerdict = GuardVerdict::Stop;
 
-    /// A consumer at 50 Hz (20 ms) with a 60 ms deadline.
+    /// A consumer at 50 Hz (20 ms) with a 60 ms deadline; joint state `s` is
+    /// stamped `1000 + s`.
     fn deadman() -> Deadman {
         Deadman::new(60 * MS)
+    }
+
+    fn send(d: &mut Deadman, s: u64, at: u64) {
+        d.sent(s, 1000 + s, at);
+    }
+
+    fn answer(d: &mut Deadman, s: u64, v: GuardVerdict) -> VerdictUse {
+        d.verdict(s, 1000 + s, v)
     }
 
     #[test]
     fn halted_until_the_first_clear() {
         let mut d = deadman();
         assert_eq!(d.motion(0), Motion::Halt(GuardVerdict::NoVerdict));
-        d.sent(0, 0);
+        send(&mut d, 0, 0);
         assert_eq!(d.motion(5 * MS), Motion::Halt(GuardVerdict::NoVerdict));
-        assert_eq!(d.verdict(0, GuardVerdict::Clear), VerdictUse::Applied);
+        assert_eq!(answer(&mut d, 0, CLEAR), VerdictUse::Applied);
         assert_eq!(d.motion(5 * MS), Motion::Move);
     }
 
     #[test]
     fn silence_halts_after_the_deadline_of_the_last_cleared_joint_state() {
         let mut d = deadman();
-        d.sent(0, 0);
-        d.verdict(0, GuardVerdict::Clear);
-        d.sent(1, 20 * MS);
-        d.sent(2, 40 * MS);
+        send(&mut d, 0, 0);
+        answer(&mut d, 0, CLEAR);
+        send(&mut d, 1, 20 * MS);
+        send(&mut d, 2, 40 * MS);
         // No answer to 1 or 2: the clear of 0 (sent at 0) lasts 60 ms.
         assert_eq!(d.motion(60 * MS), Motion::Move);
         assert_eq!(d.motion(60 * MS + 1), Motion::Halt(GuardVerdict::NoVerdict));
         // A late clear for 2 buys time from 2's send time, not from its arrival.
-        d.verdict(2, GuardVerdict::Clear);
+        answer(&mut d, 2, CLEAR);
         assert_eq!(d.motion(100 * MS), Motion::Move);
         assert_eq!(
             d.motion(100 * MS + 1),
@@ -154,43 +193,59 @@ mod tests {
     }
 
     #[test]
-    fn a_stop_halts_at_once_and_only_a_later_clear_releases_it() {
+    fn a_stop_halts_at_once_and_only_a_joint_state_sent_after_it_releases_it() {
         let mut d = deadman();
         for s in 0..4 {
-            d.sent(s, s * 20 * MS);
+            send(&mut d, s, s * 20 * MS);
         }
-        d.verdict(1, GuardVerdict::Clear);
-        d.verdict(2, GuardVerdict::Stop);
-        assert_eq!(d.motion(61 * MS), Motion::Halt(GuardVerdict::Stop));
-        // A clear for an earlier joint state, arriving late, changes nothing.
-        d.verdict(1, GuardVerdict::Clear);
-        assert_eq!(d.verdict(2, GuardVerdict::Clear), VerdictUse::Superseded);
-        assert_eq!(d.motion(61 * MS), Motion::Halt(GuardVerdict::Stop));
-        d.verdict(3, GuardVerdict::Clear);
-        assert_eq!(d.motion(61 * MS), Motion::Move);
+        answer(&mut d, 1, CLEAR);
+        // The stop answers 2 but arrives after 3 was sent: 3 cannot clear it.
+        answer(&mut d, 2, STOP);
+        assert_eq!(d.motion(61 * MS), Motion::Halt(STOP));
+        assert_eq!(answer(&mut d, 3, CLEAR), VerdictUse::Superseded);
+        assert_eq!(d.motion(61 * MS), Motion::Halt(STOP));
+        send(&mut d, 4, 80 * MS);
+        answer(&mut d, 4, CLEAR);
+        assert_eq!(d.motion(81 * MS), Motion::Move);
+    }
+
+    #[test]
+    fn a_late_stop_for_an_older_joint_state_still_halts() {
+        let mut d = deadman();
+        for s in 0..3 {
+            send(&mut d, s, s * 20 * MS);
+        }
+        answer(&mut d, 2, CLEAR);
+        assert_eq!(d.motion(41 * MS), Motion::Move);
+        // Another guard's (or a delayed) stop for joint state 1.
+        answer(&mut d, 1, STOP);
+        assert_eq!(d.motion(41 * MS), Motion::Halt(STOP));
     }
 
     #[test]
     fn a_stop_for_an_unknown_joint_state_holds_until_a_newer_clear() {
         let mut d = deadman();
-        d.sent(7, 0);
-        d.verdict(7, GuardVerdict::Clear);
-        // The guard could not decode a joint state: it answers sequence 0.
-        assert_eq!(d.verdict(0, GuardVerdict::Stop), VerdictUse::Applied);
-        assert_eq!(d.motion(MS), Motion::Halt(GuardVerdict::Stop));
-        d.sent(8, 20 * MS);
-        d.verdict(8, GuardVerdict::Clear);
+        send(&mut d, 0, 0);
+        answer(&mut d, 0, CLEAR);
+        // The guard could not decode a joint state: it answers no sequence.
+        assert_eq!(d.verdict(u64::MAX, 0, STOP), VerdictUse::Applied);
+        assert_eq!(d.motion(MS), Motion::Halt(STOP));
+        send(&mut d, 1, 20 * MS);
+        answer(&mut d, 1, CLEAR);
         assert_eq!(d.motion(21 * MS), Motion::Move);
     }
 
     #[test]
     fn clears_of_strangers_and_forgotten_states_are_ignored() {
         let mut d = deadman();
-        assert_eq!(d.verdict(3, GuardVerdict::Clear), VerdictUse::Unknown);
+        assert_eq!(answer(&mut d, 3, CLEAR), VerdictUse::Unknown);
         for s in 0..(REMEMBERED as u64 + 10) {
-            d.sent(s, s * MS);
+            send(&mut d, s, s * MS);
         }
-        assert_eq!(d.verdict(0, GuardVerdict::Clear), VerdictUse::Unknown);
+        assert_eq!(answer(&mut d, 0, CLEAR), VerdictUse::Unknown);
+        // Same sequence, another stamp: another consumer (or a restarted one).
+        let newest = REMEMBERED as u64 + 9;
+        assert_eq!(d.verdict(newest, 7, CLEAR), VerdictUse::Unknown);
         assert_eq!(d.motion(300 * MS), Motion::Halt(GuardVerdict::NoVerdict));
     }
 
@@ -203,26 +258,27 @@ mod tests {
             GuardVerdict::Unobserved,
         ] {
             let mut d = deadman();
-            d.sent(0, 0);
-            d.sent(1, MS);
-            d.verdict(0, GuardVerdict::Clear);
-            d.verdict(1, v);
+            send(&mut d, 0, 0);
+            send(&mut d, 1, MS);
+            answer(&mut d, 0, CLEAR);
+            answer(&mut d, 1, v);
             assert_eq!(d.motion(2 * MS), Motion::Halt(v));
         }
     }
 
-    /// Exhaustive over short histories: motion is allowed only if some clear
-    /// answers a joint state sent within the deadline and no stop answers that
-    /// one or a later one.
+    /// Exhaustive over short histories of sends, clears and stops (of the
+    /// newest or the oldest joint state, in any order): the consumer moves
+    /// only while it holds a clear for a joint state sent within the deadline
+    /// and after every stop that has arrived.
     #[test]
-    fn never_moves_without_a_fresh_unsuperseded_clear() {
-        let events = [0u8, 1, 2, 3]; // 0 send, 1 clear newest, 2 stop newest, 3 clear oldest
+    fn never_moves_without_a_fresh_clear_newer_than_every_stop() {
+        // 0 send, 1 clear newest, 2 stop newest, 3 clear oldest, 4 stop oldest
         let mut histories = vec![vec![]];
         for _ in 0..6 {
             histories = histories
                 .into_iter()
                 .flat_map(|h: Vec<u8>| {
-                    events.iter().map(move |&e| {
+                    (0u8..5).map(move |e| {
                         let mut h = h.clone();
                         h.push(e);
                         h
@@ -231,42 +287,41 @@ mod tests {
                 .collect();
         }
         for h in histories {
-            let mut d = deadman();
-            let (mut next, mut sent): (u64, Vec<(u64, u64)>) = (0, vec![]);
-            let mut answers: Vec<(u64, bool)> = vec![]; // (seq, clear)
-            for (t, &e) in h.iter().enumerate() {
-                let now = t as u64 * 20 * MS;
-                match e {
-                    0 => {
-                        d.sent(next, now);
-                        sent.push((next, now));
-                        next += 1;
-                    }
-                    _ => {
-                        let Some(&(seq, _)) = (if e == 3 { sent.first() } else { sent.last() })
-                        else {
-                            continue;
-                        };
-                        let clear = e != 2;
-                        let v = if clear {
-                            GuardVerdict::Clear
-                        } else {
-                            GuardVerdict::Stop
-                        };
-                        d.verdict(seq, v);
-                        answers.push((seq, clear));
-                    }
+            check_history(&h);
+        }
+    }
+
+    fn check_history(h: &[u8]) {
+        let mut d = deadman();
+        let mut sent: Vec<(u64, u64)> = vec![];
+        // Per stop: the newest sequence sent when it arrived.
+        let mut stops: Vec<Option<u64>> = vec![];
+        let mut clears: Vec<u64> = vec![];
+        for (t, &e) in h.iter().enumerate() {
+            let now = t as u64 * 20 * MS;
+            if e == 0 {
+                let s = sent.len() as u64;
+                send(&mut d, s, now);
+                sent.push((s, now));
+            } else if let Some(&(seq, _)) = if e >= 3 { sent.first() } else { sent.last() } {
+                if e % 2 == 1 {
+                    answer(&mut d, seq, CLEAR);
+                    clears.push(seq);
+                } else {
+                    answer(&mut d, seq, STOP);
+                    stops.push(sent.last().map(|s| s.0));
                 }
-                if d.motion(now) == Motion::Move {
-                    let newest_stop = answers.iter().filter(|a| !a.1).map(|a| a.0).max();
-                    let ok = answers.iter().any(|&(seq, clear)| {
-                        let sent_at = sent.iter().find(|s| s.0 == seq).unwrap().1;
-                        clear
-                            && now - sent_at <= d.deadline_ns()
-                            && newest_stop.is_none_or(|s| seq > s)
-                    });
-                    assert!(ok, "moved without a fresh clear: {h:?} at step {t}");
-                }
+            }
+            if d.motion(now) == Motion::Move {
+                let ok = clears.iter().any(|&seq| {
+                    let sent_at = sent[seq as usize].1;
+                    let after_stops = stops.iter().all(|s| s.is_none_or(|s| seq > s));
+                    now - sent_at <= d.deadline_ns() && after_stops
+                });
+                assert!(
+                    ok,
+                    "moved without a fresh clear after every stop: {h:?} at {t}"
+                );
             }
         }
     }

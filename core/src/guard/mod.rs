@@ -19,7 +19,8 @@
 //! - [`CollisionGuard`]: the decision as a state machine over several views
 //!   (surrogate streams): freshness on the guard's own clock, stamp skew,
 //!   motion allowance, unobserved space ([`GuardPolicy`]).
-//! - [`Deadman`]: a verdict consumer's rule for when it may move.
+//! - [`Deadman`]: a verdict consumer's rule for when it may move, and
+//!   [`ResumeAfter`]: its wait-and-resume after a halt.
 //!
 //! The guard answers for the surrogate's domain only: points outside it (or in
 //! trimmed-away triangles, which hold no points) are not represented.
@@ -38,6 +39,7 @@ mod joint;
 mod kinematics;
 mod probe;
 mod report;
+mod resume;
 mod schema;
 mod shape;
 mod trajectory;
@@ -51,13 +53,15 @@ pub use arm::{ArmModel, Link};
 pub use config::{GuardConfig, MAX_REFINE_DEPTH};
 pub use deadman::{Deadman, Motion, VerdictUse};
 pub use decision::{
-    CollisionGuard, Decision, GuardPolicy, SurrogateInput, SurrogateRejected, UnobservedPolicy,
+    CollisionGuard, Decision, GuardPolicy, SurrogateInput, SurrogateRecord, SurrogateRejected,
+    UnobservedPolicy,
 };
 pub use envelope::{CellBox, Envelope};
 pub use error::GuardError;
 pub use joint::{origin_from_xyz_rpy, Joint, JointKind, Limits};
 pub use kinematics::ArmPose;
 pub use report::{check_arm, check_shapes, GuardReport, ShapeClearance};
+pub use resume::ResumeAfter;
 pub use schema::ArmFile;
 pub use shape::{Capsule, Shape, Sphere, WorldShape};
 pub use trajectory::{Trajectory, Waypoint};

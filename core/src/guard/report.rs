@@ -43,9 +43,11 @@ pub struct GuardReport {
 }
 
 impl GuardReport {
-    /// Combines the verdicts of the same shapes against several envelopes
-    /// (several surrogates): per shape and link the smaller clearance wins.
-    /// `None` when the two reports are of different arms.
+    /// Combines the verdicts of the same shapes against envelopes of
+    /// *different* clouds (each holding part of the scene): per shape and link
+    /// the smaller clearance wins. Views of one cloud combine the other way,
+    /// by the larger bound (`CollisionGuard`). `None` when the two reports are
+    /// of different arms.
     pub fn merged(&self, other: &GuardReport, config: &GuardConfig) -> Option<GuardReport> {
         if self.shapes.len() != other.shapes.len() || self.links.len() != other.links.len() {
             return None;

@@ -32,9 +32,8 @@ pub struct CloudMessage {
     /// Time the cloud has spent in shroud nodes before this publication, each
     /// node measuring its own share on its own monotonic clock: from the first
     /// node's receipt of the data (the last byte of a scan, or the simulator's
-    /// output) to this publication. Unlike `stamp_ns`, which is the device's
+    /// output) to this publication's encoding. Unlike `stamp_ns`, which is the device's
     /// word, this is what safety decisions age clouds by.
-    #[serde(default)]
     pub pipeline_ns: u64,
     /// Which sensor or scene produced it.
     pub source: String,

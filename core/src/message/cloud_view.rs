@@ -21,7 +21,6 @@ pub struct CloudView<'a> {
     pub stamp_ns: u64,
     pub sequence: u64,
     /// See [`CloudMessage::pipeline_ns`].
-    #[serde(default)]
     pub pipeline_ns: u64,
     #[serde(borrow)]
     pub source: Cow<'a, str>,

@@ -75,8 +75,8 @@ impl GuardVerdict {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CollisionMessage {
     pub version: u16,
-    /// Stamp and sequence of the joint state checked (0 and 0 when it could
-    /// not be decoded).
+    /// Stamp and sequence of the joint state checked (0 and `u64::MAX` when it
+    /// could not be decoded).
     pub joints_stamp_ns: u64,
     pub joints_sequence: u64,
     pub arm: String,

@@ -29,7 +29,7 @@ pub use skew::{check_stamp_skew, max_skew_ns_from_secs, StampSkew, DEFAULT_MAX_S
 pub use smooth::{SmoothFitReport, SmoothPatchesMessage};
 pub use status::NodeStatusMessage;
 pub use surrogate::{SurfaceMessage, SurrogateMessage};
-pub use topic::{check_name, TopicKey, TopicKind, Topics, ROOT};
+pub use topic::{check_name, Congestion, TopicKey, TopicKind, TopicQos, Topics, ROOT};
 
 /// The schema version every message carries; decoders refuse other versions.
 /// Version 2 added `pipeline_ns` to clouds and surrogates and the guard's

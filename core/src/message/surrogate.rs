@@ -29,9 +29,8 @@ pub struct SurrogateMessage {
     pub source_stamp_ns: u64,
     pub source_sequence: u64,
     /// Time the source cloud had spent in shroud nodes when this surrogate was
-    /// published: the cloud's own `pipeline_ns` plus the fit node's wait, fit
-    /// and encoding, on the fit node's monotonic clock.
-    #[serde(default)]
+    /// published: the cloud's own `pipeline_ns` plus the fit node's wait,
+    /// decode and fit (up to the encoding), on the fit node's monotonic clock.
     pub pipeline_ns: u64,
     pub source: String,
     /// Frame axes: the fitting direction and `u`, `v`, `w` (each x, y, z).

@@ -60,6 +60,46 @@ impl TopicKind {
     pub fn parse(chunk: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|k| k.as_str() == chunk)
     }
+
+    /// The topic's documented quality of service (`core/FORMATS.md`), which
+    /// every publisher of the kind uses.
+    pub fn qos(self) -> TopicQos {
+        let (congestion, urgent) = match self {
+            // Each supersedes the last: a sensor or fitter never waits for a
+            // slow reader.
+            Self::Cloud | Self::Status | Self::Smooth | Self::Alive => (Congestion::Drop, false),
+            // Superseding too, but the guard must get fresh ones first.
+            Self::Surrogate | Self::Joints => (Congestion::Drop, true),
+            // A stop must never be discarded by a congested link.
+            Self::Collision => (Congestion::Block, true),
+            // A commit or a clear must arrive.
+            Self::Blend => (Congestion::Block, false),
+        };
+        TopicQos {
+            congestion,
+            real_time: urgent,
+            express: urgent,
+        }
+    }
+}
+
+/// What a congested link does with a new message of a topic.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Congestion {
+    /// Drop it (the next one supersedes it).
+    Drop,
+    /// Block the publisher until it can be sent.
+    Block,
+}
+
+/// Per-topic quality of service, as plain data; the nodes map it to zenoh's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TopicQos {
+    pub congestion: Congestion,
+    /// Real-time priority instead of the default data priority.
+    pub real_time: bool,
+    /// Sent at once rather than batched.
+    pub express: bool,
 }
 
 impl fmt::Display for TopicKind {
@@ -155,6 +195,24 @@ impl TopicKey {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn only_stops_and_blend_commands_block_and_the_guards_inputs_are_urgent() {
+        for kind in TopicKind::ALL {
+            let qos = kind.qos();
+            let blocks = qos.congestion == Congestion::Block;
+            assert_eq!(
+                blocks,
+                matches!(kind, TopicKind::Collision | TopicKind::Blend),
+                "{kind}"
+            );
+            let urgent = matches!(
+                kind,
+                TopicKind::Surrogate | TopicKind::Joints | TopicKind::Collision
+            );
+            assert_eq!((qos.real_time, qos.express), (urgent, urgent), "{kind}");
+        }
+    }
 
     #[test]
     fn keys_follow_the_convention_and_parse_back() {

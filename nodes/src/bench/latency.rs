@@ -3,15 +3,16 @@
 //! and real zenoh sessions, at several cloud sizes and rates.
 
 use super::BenchArgs;
-use crate::transport::{die_with_parent, unix_ns, OnOff, PayloadWriter, ZenohArgs};
+use crate::transport::{
+    die_with_parent, topic_publisher, unix_ns, OnOff, PayloadWriter, ZenohArgs,
+};
 use anyhow::{Context, Result};
-use shroud_core::message::{CloudView, SurrogateMessage};
+use shroud_core::message::{CloudView, SurrogateMessage, TopicKind};
 use shroud_core::metrics::Percentiles;
 use shroud_sim::MovingSpheres;
 use std::process::{Child, Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
-use zenoh::qos::CongestionControl;
 
 /// One row of the table.
 struct Row {
@@ -90,11 +91,8 @@ async fn measure(points: usize, rate: f64, seconds: f64) -> Result<Row> {
         })
         .await
         .map_err(|e| anyhow::anyhow!("subscribe: {e}"))?;
-    let publisher = session
-        .declare_publisher(format!("shroud/{namespace}/cloud/bench"))
-        .congestion_control(CongestionControl::Drop)
-        .await
-        .map_err(|e| anyhow::anyhow!("publisher: {e}"))?;
+    let key = format!("shroud/{namespace}/cloud/bench");
+    let publisher = topic_publisher(&session, key, TopicKind::Cloud)?;
     let writer = PayloadWriter::new(true, 4 * (points * 12 + 4096));
     // Frames are generated ahead so that the publisher's clock measures transport
     // and fitting only, not the simulator.

@@ -2,42 +2,16 @@
 //! al., paper 001): by position (`--at`) or by a 2D cursor drag over a camera view
 //! (`--drag`), then write the merged cloud with normals as PLY.
 
+use crate::args::{points3, BlendShapeArgs};
 use crate::{files, parse};
 use anyhow::{bail, Context, Result};
 use glam::{DVec2, DVec3};
 use shroud_core::blend::{
-    blend, write_ply_with_normals, BlendParams, Camera, Child, DragSession, LocalAdjust,
-    PolygonOfInterest, Prepared,
+    blend, write_ply_with_normals, Camera, Child, DragSession, LocalAdjust, PolygonOfInterest,
+    Prepared,
 };
 use std::path::PathBuf;
 use std::time::Instant;
-
-/// The blend's tunables, shared by `shroud blend` and the `blend` node.
-#[derive(clap::Args, Debug, Clone)]
-pub struct BlendShapeArgs {
-    /// RBF centre budget.
-    #[arg(long, default_value_t = 1200)]
-    pub centres: usize,
-    /// Marching-tetrahedra cell, in point spacings.
-    #[arg(long, default_value_t = 1.5)]
-    pub cell: f64,
-    /// Gap, ring and front sizes as fractions of the polygon's radius: g,r,f.
-    #[arg(long, default_value = "0.35,0.3,0.3")]
-    pub regions: String,
-}
-
-impl BlendShapeArgs {
-    pub fn params(&self) -> Result<BlendParams> {
-        let [gap, ring, front] = parse::numbers::<3>(&self.regions, "regions")?;
-        let mut params = BlendParams::default();
-        params.regions.gap = gap;
-        params.regions.ring = ring;
-        params.regions.front = front;
-        params.rbf.max_centres = self.centres;
-        params.cell = self.cell;
-        Ok(params)
-    }
-}
 
 #[derive(clap::Args, Debug)]
 pub struct BlendArgs {
@@ -221,14 +195,6 @@ fn drag(args: &BlendArgs, parent: &Prepared, child: &Child) -> Result<DragSessio
             .with_context(|| format!("cannot drag to cursor {cursor}"))?;
     }
     Ok(session)
-}
-
-/// `"x,y,z;x,y,z;..."`.
-pub fn points3(text: &str, what: &str) -> Result<Vec<DVec3>> {
-    text.split(';')
-        .filter(|s| !s.trim().is_empty())
-        .map(|s| parse::numbers::<3>(s, what).map(DVec3::from))
-        .collect()
 }
 
 /// `"x,y;x,y;..."`.

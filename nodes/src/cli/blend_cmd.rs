@@ -3,14 +3,13 @@
 //! drag-and-drop sends).
 
 use crate::parse;
-use crate::transport::{unix_ns, ZenohArgs};
+use crate::transport::{topic_publisher, unix_ns, ZenohArgs};
 use anyhow::Result;
 use clap::{Args, Subcommand};
 use glam::DVec3;
 use shroud_core::blend::{BlendCommand, LocalAdjust};
 use shroud_core::message::{BlendCommandMessage, TopicKind};
 use std::time::Duration;
-use zenoh::qos::CongestionControl;
 
 #[derive(Debug, Args)]
 pub struct BlendCmdArgs {
@@ -86,12 +85,8 @@ pub fn run(args: BlendCmdArgs) -> Result<()> {
         .build()?
         .block_on(async {
             let session = args.zenoh.open().await?;
-            // A command must arrive: block rather than drop on a congested link.
-            let publisher = session
-                .declare_publisher(&key)
-                .congestion_control(CongestionControl::Block)
-                .await
-                .map_err(|e| anyhow::anyhow!("publisher {key}: {e}"))?;
+            // A command must arrive: the blend topic blocks rather than drops.
+            let publisher = topic_publisher(&session, key.clone(), TopicKind::Blend)?;
             wait_for_blender(&publisher, &key).await;
             for (sequence, command) in commands.iter().enumerate() {
                 let msg = BlendCommandMessage::new(unix_ns(), sequence as u64, command);

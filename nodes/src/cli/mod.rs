@@ -5,12 +5,11 @@ mod blend_cmd;
 mod demo;
 pub mod fit;
 mod query;
+pub mod sensor_sim;
 mod sim;
 mod smooth;
 
-pub use blend::{points3, BlendShapeArgs};
-pub use fit::{certificate_line, SurrogateShapeArgs};
-pub use smooth::SmoothDomainArgs;
+pub use fit::certificate_line;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -52,7 +51,7 @@ pub enum Command {
     /// Start a graph of nodes from a launch file and supervise it.
     Launch(crate::launch::LaunchArgs),
     /// Simulate a serial or CAN range sensor: a pty or serial port (serial/slcan), or a candump log.
-    SensorSim(crate::ingest::cli::SensorSimArgs),
+    SensorSim(sensor_sim::SensorSimArgs),
     /// Drop a child point cloud onto a parent and blend them (paper 001).
     Blend(blend::BlendArgs),
     /// Send drop/adjust/clear/commit commands (or a whole drag) to a `blend` node.
@@ -72,7 +71,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Node(command) => crate::node::run(command),
         Command::Topic(command) => crate::introspect::run(command),
         Command::Launch(args) => crate::launch::run(args),
-        Command::SensorSim(args) => crate::ingest::cli::run_sensor_sim(&args),
+        Command::SensorSim(args) => sensor_sim::run_sensor_sim(&args),
         Command::Blend(args) => blend::run(&args),
         Command::BlendCmd(args) => blend_cmd::run(args),
         Command::Smooth(args) => smooth::run(&args),

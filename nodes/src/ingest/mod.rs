@@ -22,13 +22,12 @@
 //!   ([`CandumpReplay`]) or an in-memory bus ([`memory_bus`]); [`CanSourceSpec`]
 //!   names one in text (`socketcan:can0`, `slcan:/dev/ttyACM0@115200:500000`,
 //!   `candump:run.log@max`);
-//! - [`cli`]: `shroud sensor-sim`, and [`sim`]: the writers behind it.
+//! - [`sim`]: the simulated sensors' writers behind `shroud sensor-sim`.
 
 mod backoff;
 mod can_reader;
 mod can_source;
 mod candump_source;
-pub mod cli;
 mod error;
 mod memory_bus;
 pub mod pty;
@@ -39,7 +38,7 @@ mod slcan_source;
 mod socketcan_source;
 mod stats;
 
-pub use backoff::BackoffConfig;
+pub use backoff::{sleep_unless_stopped, BackoffConfig};
 pub use can_reader::{run_can_reader, CanReaderConfig, CanSourceSpec};
 pub use can_source::CanSource;
 pub use candump_source::{CandumpReplay, ReplayPace};

@@ -35,6 +35,8 @@ pub fn run(args: LaunchArgs) -> Result<()> {
         args.duration.is_finite() && args.duration >= 0.0,
         "--duration must be >= 0"
     );
+    tracing_subscriber::EnvFilter::try_new(&args.node_log)
+        .map_err(|e| anyhow::anyhow!("invalid --node-log filter {:?}: {e}", args.node_log))?;
     let text = std::fs::read_to_string(&args.file)
         .with_context(|| format!("cannot read launch file {}", args.file.display()))?;
     let file = LaunchFile::from_toml_str(&text)

@@ -9,12 +9,11 @@ use super::runtime::{run_node, NodeCommon, NodeContext};
 use crate::transport::{monotonic_ns, unix_ns};
 use anyhow::{Context, Result};
 use clap::Args;
-use shroud_core::guard::{ArmFile, Deadman, Motion, Trajectory, VerdictUse};
+use shroud_core::guard::{ArmFile, Deadman, Motion, ResumeAfter, Trajectory, VerdictUse};
 use shroud_core::message::{CollisionMessage, GuardVerdict, JointStateMessage, TopicKind};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
-use zenoh::qos::{CongestionControl, Priority};
 use zenoh::Wait;
 
 #[derive(Debug, Clone, Args)]
@@ -34,6 +33,11 @@ pub struct ArmArgs {
     /// joint state sent within this long has arrived (default: three periods).
     #[arg(long)]
     pub deadline: Option<f64>,
+    /// After a halt, resume once motion has been allowed for this long
+    /// (seconds), so that a clearance hovering at the stop distance halts the
+    /// arm once rather than in a stutter.
+    #[arg(long, default_value_t = 0.3)]
+    pub resume_after: f64,
     /// Keep moving whatever the guard says (to watch the guard's verdicts alone).
     #[arg(long)]
     pub ignore_guard: bool,
@@ -44,6 +48,10 @@ pub fn run(args: ArmArgs) -> Result<()> {
     anyhow::ensure!(
         args.rate.is_finite() && args.rate > 0.0 && args.rate <= 1000.0,
         "--rate must be in (0, 1000] per second"
+    );
+    anyhow::ensure!(
+        args.resume_after.is_finite() && (0.0..=60.0).contains(&args.resume_after),
+        "--resume-after must be in [0, 60] seconds"
     );
     if let Some(d) = args.deadline {
         anyhow::ensure!(
@@ -83,7 +91,6 @@ fn serve(
         .arm
         .clone()
         .unwrap_or_else(|| file.arm.name().to_string());
-    let joints_key = ctx.key(TopicKind::Joints, &arm_name)?;
     let collision_key = ctx.key(TopicKind::Collision, &arm_name)?;
     let period = Duration::from_secs_f64(1.0 / args.rate);
     let deadline = args.deadline.unwrap_or(3.0 / args.rate);
@@ -104,41 +111,42 @@ fn serve(
             .wait()
             .map_err(|e| anyhow::anyhow!("subscribe {collision_key}: {e}"))?
     };
-    let publisher = ctx
-        .session
-        .declare_publisher(joints_key.clone())
-        .congestion_control(CongestionControl::Drop)
-        .priority(Priority::RealTime)
-        .express(true)
-        .wait()
-        .map_err(|e| anyhow::anyhow!("publisher {joints_key}: {e}"))?;
+    let publisher = ctx.publisher(TopicKind::Joints, &arm_name)?;
     let names = joint_names(&file);
     let (mut motion_time, mut sequence) = (0.0f64, 0u64);
     let mut last = Instant::now();
     let mut positions = trajectory.positions_at(0.0)?;
     let mut halt = HaltLog::default();
+    let mut resume = ResumeAfter::new((args.resume_after * 1e9) as u64);
     while !ctx.stopping() {
         let now = Instant::now();
         let motion = if args.ignore_guard {
             Motion::Move
         } else {
-            lock(&verdicts).deadman.motion(monotonic_ns())
+            let now_ns = monotonic_ns();
+            let allowed = lock(&verdicts).deadman.motion(now_ns);
+            resume.motion(allowed, now_ns)
         };
         // Trajectory time advances only while the arm is allowed to move.
         if motion == Motion::Move {
             motion_time += (now - last).as_secs_f64();
             positions = trajectory.positions_at(motion_time)?;
         }
-        halt.update(&ctx, motion, &lock(&verdicts).last_reason, now);
+        // Not under the lock: a log line may block on a slow stderr.
+        let reason = lock(&verdicts).last_reason.clone();
+        halt.update(&ctx, motion, &reason, now);
         last = now;
+        let stamp_ns = unix_ns();
         let msg = JointStateMessage::new(
-            unix_ns(),
+            stamp_ns,
             sequence,
             &arm_name,
             names.clone(),
             positions.clone(),
         );
-        lock(&verdicts).deadman.sent(sequence, monotonic_ns());
+        lock(&verdicts)
+            .deadman
+            .sent(sequence, stamp_ns, monotonic_ns());
         match publisher.put(msg.to_bytes()?).wait() {
             Ok(()) => ctx.metrics.add("published", 1),
             Err(e) => tracing::warn!("publish joints: {e}"),
@@ -152,7 +160,10 @@ fn serve(
 
 fn on_verdict(ctx: &NodeContext, verdicts: &Mutex<Verdicts>, msg: &CollisionMessage) {
     let mut v = lock(verdicts);
-    match v.deadman.verdict(msg.joints_sequence, msg.verdict) {
+    match v
+        .deadman
+        .verdict(msg.joints_sequence, msg.joints_stamp_ns, msg.verdict)
+    {
         VerdictUse::Applied => ctx.metrics.add("verdicts", 1),
         VerdictUse::Unknown => ctx.metrics.add("verdicts_unknown", 1),
         VerdictUse::Superseded => ctx.metrics.add("verdicts_superseded", 1),

@@ -5,7 +5,7 @@
 //! source (0 parent, 1 child, 2 transition).
 
 use super::runtime::{run_node, NodeCommon, NodeContext};
-use crate::cli::{points3, BlendShapeArgs};
+use crate::args::{points3, BlendShapeArgs};
 use crate::files;
 use crate::transport::{unix_ns, Mailbox, PayloadWriter};
 use anyhow::{Context, Result};
@@ -81,12 +81,9 @@ pub fn run(args: BlendNodeArgs) -> Result<()> {
 
 fn serve(ctx: Arc<NodeContext>, args: BlendNodeArgs, params: BlendParams) -> Result<()> {
     let commands = ctx.key(TopicKind::Blend, &args.stream)?;
-    let output = ctx.key(
-        TopicKind::Cloud,
-        args.output.as_deref().unwrap_or(&args.stream),
-    )?;
+    let output = args.output.as_deref().unwrap_or(&args.stream);
     let child = child(&args, &params)?;
-    let Some(parent) = parent(&ctx, &args, &params)? else {
+    let Some((parent, parent_age)) = parent(&ctx, &args, &params)? else {
         return Ok(()); // stopped while waiting for the parent stream
     };
     let mut session = BlendSession::new(parent, child, params);
@@ -94,15 +91,16 @@ fn serve(ctx: Arc<NodeContext>, args: BlendNodeArgs, params: BlendParams) -> Res
     // the worker skips the drops a later drop supersedes instead.
     let mailbox = Arc::new(Mailbox::new(1024));
     let _subscriber = ctx.subscribe_into(&commands, &mailbox)?;
-    // The model is large and each one supersedes the last: drop, like a sensor.
-    let publisher = ctx.latest_publisher(&output)?;
-    let writer = PayloadWriter::new(true, 64 << 20);
+    // The model is large and each one supersedes the last: a cloud topic.
+    let publisher = ctx.publisher(TopicKind::Cloud, output)?;
+    let writer = ctx.payload_writer(64 << 20);
     let mut out = Output {
         ctx: &ctx,
         publisher: &publisher,
         writer: &writer,
         source: format!("{}/blend", ctx.name),
         sequence: 0,
+        parent_age,
     };
     tracing::info!(%commands, %output, "blending");
     out.publish(&session);
@@ -179,6 +177,23 @@ struct Output<'a> {
     writer: &'a PayloadWriter,
     source: String,
     sequence: u64,
+    parent_age: DataAge,
+}
+
+/// How old the parent's data is: its time in shroud before it reached this
+/// node, and when it did (a snapshot only grows older; a composed model is
+/// as old as its parent).
+#[derive(Debug, Clone, Copy)]
+struct DataAge {
+    pipeline_ns: u64,
+    received: Instant,
+}
+
+impl DataAge {
+    fn now_ns(&self) -> u64 {
+        let held = self.received.elapsed().as_nanos() as u64;
+        self.pipeline_ns.saturating_add(held)
+    }
 }
 
 impl Output<'_> {
@@ -195,7 +210,8 @@ impl Output<'_> {
             SensorPose::default(),
             &xyz,
         )
-        .with_intensity(&codes);
+        .with_intensity(&codes)
+        .with_pipeline_ns(self.parent_age.now_ns());
         let sent = view
             .aligned()
             .and_then(|v| self.writer.encode(&v))
@@ -234,18 +250,23 @@ fn child(args: &BlendNodeArgs, params: &BlendParams) -> Result<Child> {
     Ok(Child::new(cloud, polygon, &params.boundary)?)
 }
 
-/// The parent: read from its file, or the first valid cloud of its stream
-/// (`None` if the node is stopped first).
+/// The parent and its age: read from its file (as old as the node's copy of
+/// it), or the first valid cloud of its stream (`None` if the node is
+/// stopped first).
 fn parent(
     ctx: &NodeContext,
     args: &BlendNodeArgs,
     params: &BlendParams,
-) -> Result<Option<Prepared>> {
+) -> Result<Option<(Prepared, DataAge)>> {
     if let Some(path) = &args.parent {
         let points = files::read_cloud(path)?;
+        let age = DataAge {
+            pipeline_ns: 0,
+            received: Instant::now(),
+        };
         let parent = Prepared::new(&points, "parent", params.normal_k)
             .with_context(|| format!("parent {}", path.display()))?;
-        return Ok(Some(parent));
+        return Ok(Some((parent, age)));
     }
     let stream = args.parent_stream.as_deref().unwrap_or("sim");
     let key = ctx.key(TopicKind::Cloud, stream)?;
@@ -263,17 +284,24 @@ fn parent(
             Ok(None) => continue,
             Err(e) => anyhow::bail!("the parent stream {key} closed: {e}"),
         };
-        let decoded =
-            CloudMessage::from_bytes(&sample.payload().to_bytes()).and_then(|m| m.point_array());
-        let points = match decoded {
-            Ok(points) => points,
+        let received = Instant::now();
+        let decoded = CloudMessage::from_bytes(&sample.payload().to_bytes())
+            .and_then(|m| Ok((m.point_array()?, m.pipeline_ns)));
+        let (points, pipeline_ns) = match decoded {
+            Ok(decoded) => decoded,
             Err(e) => {
                 ctx.drop_malformed(&key, &e);
                 continue;
             }
         };
         match Prepared::new(&points, "parent", params.normal_k) {
-            Ok(parent) => return Ok(Some(parent)),
+            Ok(parent) => {
+                let age = DataAge {
+                    pipeline_ns,
+                    received,
+                };
+                return Ok(Some((parent, age)));
+            }
             Err(e) => {
                 ctx.metrics.add("parent_refused", 1);
                 tracing::warn!("parent cloud from {key} refused: {e}");

@@ -3,7 +3,7 @@
 //! decodes, fits with warm start, and publishes.
 
 use super::runtime::{run_node, NodeCommon, NodeContext};
-use crate::cli::SurrogateShapeArgs;
+use crate::args::SurrogateShapeArgs;
 use crate::transport::{unix_ns, Mailbox};
 use anyhow::Result;
 use clap::Args;
@@ -13,7 +13,6 @@ use shroud_core::surrogate::{FitError, Sides, SurrogateFitter};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use zenoh::bytes::ZBytes;
-use zenoh::qos::CongestionControl;
 use zenoh::Wait;
 
 #[derive(Debug, Clone, Args)]
@@ -54,10 +53,11 @@ pub fn run(args: FitNodeArgs) -> Result<()> {
 
 fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) -> Result<()> {
     let input = ctx.key(TopicKind::Cloud, &args.input)?;
-    let output = ctx.key(
+    let publisher = ctx.publisher(
         TopicKind::Surrogate,
         args.output.as_deref().unwrap_or(&args.input),
     )?;
+    let output = publisher.key_expr().to_string();
     let mailbox = Arc::new(Mailbox::new(args.queue));
     let inbox = mailbox.clone();
     let _subscriber = ctx
@@ -73,17 +73,6 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
         })
         .wait()
         .map_err(|e| anyhow::anyhow!("subscribe {input}: {e}"))?;
-    // Surrogates are small and each one supersedes the last: a slow consumer
-    // should lose an old one rather than stall the fitter (drop), but the guard
-    // must see fresh ones first (real-time priority, express).
-    let publisher = ctx
-        .session
-        .declare_publisher(&output)
-        .congestion_control(CongestionControl::Drop)
-        .priority(zenoh::qos::Priority::RealTime)
-        .express(true)
-        .wait()
-        .map_err(|e| anyhow::anyhow!("publisher {output}: {e}"))?;
     tracing::info!(%input, %output, "fitting");
     let mut fit_ms = Percentiles::new(256);
     let mut latency_ms = Percentiles::new(256);

@@ -17,7 +17,6 @@ use shroud_core::message::{
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
-use zenoh::qos::{CongestionControl, Priority};
 use zenoh::Wait;
 
 #[derive(Debug, Clone, Args)]
@@ -74,6 +73,11 @@ pub fn run(args: GuardArgs) -> Result<()> {
         file.guard.max_obstacle_speed = v;
     }
     let policy = policy(&args)?;
+    if args.surrogates.len() > 1 && file.guard.max_obstacle_speed == 0.0 {
+        tracing::warn!(
+            "several views and --max-obstacle-speed 0: views of different ages combine soundly only if nothing in the scene moves"
+        );
+    }
     let links = file.arm.links().iter().map(|l| l.name.clone()).collect();
     let guard = CollisionGuard::new(args.surrogates.clone(), links, policy, file.guard)?;
     let common = args.common.clone();
@@ -114,16 +118,9 @@ fn serve(
     for (view, name) in args.surrogates.iter().enumerate() {
         subscribers.push(subscribe_view(&ctx, &guard, view, name)?);
     }
-    // A stop must not be lost to congestion: collision messages block rather
-    // than drop, at real-time priority.
-    let publisher = ctx
-        .session
-        .declare_publisher(collision_key.clone())
-        .congestion_control(CongestionControl::Block)
-        .priority(Priority::RealTime)
-        .express(true)
-        .wait()
-        .map_err(|e| anyhow::anyhow!("publisher {collision_key}: {e}"))?;
+    // A stop must not be lost to congestion: the collision topic blocks
+    // rather than drops, at real-time priority.
+    let publisher = ctx.publisher(TopicKind::Collision, &arm_name)?;
     let checker = Checker {
         ctx: ctx.clone(),
         names: joint_names(&file),
@@ -173,7 +170,12 @@ fn subscribe_view(
                 .and_then(|(msg, s)| Ok((msg, Envelope::new(&s)?)));
             let (msg, envelope) = match built {
                 Ok(built) => built,
-                Err(e) => return c.drop_malformed(&key, &e),
+                Err(e) => {
+                    // Newer data exists that we cannot use: the older
+                    // surrogate no longer vouches for this view.
+                    lock(&guard).invalidate(view);
+                    return c.drop_malformed(&key, &e);
+                }
             };
             let input = SurrogateInput {
                 envelope,
@@ -181,7 +183,9 @@ fn subscribe_view(
                 sequence: msg.source_sequence,
                 pipeline_ns: msg.pipeline_ns,
             };
-            match lock(&guard).accept(view, input, arrived_ns, unix_ns()) {
+            // Not under the lock: a log line may block on a slow stderr.
+            let accepted = lock(&guard).accept(view, input, arrived_ns, unix_ns());
+            match accepted {
                 Ok(()) => c.metrics.add("surrogates", 1),
                 Err(refused) => {
                     c.metrics.add(refused.counter(), 1);
@@ -212,7 +216,8 @@ impl Checker {
             Err(e) => {
                 self.ctx.drop_malformed(key, &e);
                 let refused = Decision::refused(format!("undecodable joint state: {e}"));
-                return self.publish(&refused, (0, 0), start);
+                // It answers no joint state: no sequence a consumer sent.
+                return self.publish(&refused, (0, u64::MAX), start);
             }
         };
         let id = (msg.stamp_ns, msg.sequence);

@@ -4,24 +4,27 @@
 mod arm;
 mod arm_file;
 mod blend;
+mod can;
 mod fit;
 mod guard;
 mod list;
 mod metrics;
 mod runtime;
+mod scan_publisher;
 mod scanner;
-mod sensor;
+mod serial;
 mod smooth;
 
 pub use arm::ArmArgs;
 pub use blend::BlendNodeArgs;
+pub use can::CanNodeArgs;
 pub use fit::FitNodeArgs;
 pub use guard::GuardArgs;
 pub use list::NodeListArgs;
 pub use metrics::NodeMetrics;
 pub use runtime::{run_node, NodeCommon, NodeContext};
 pub use scanner::ScannerArgs;
-pub use sensor::{CanNodeArgs, SerialNodeArgs};
+pub use serial::SerialNodeArgs;
 pub use smooth::SmoothNodeArgs;
 
 use anyhow::Result;
@@ -55,8 +58,8 @@ pub fn run(command: NodeCommand) -> Result<()> {
         NodeCommand::Fit(args) => fit::run(args),
         NodeCommand::Guard(args) => guard::run(args),
         NodeCommand::Arm(args) => arm::run(args),
-        NodeCommand::Serial(args) => sensor::run_serial(args),
-        NodeCommand::Can(args) => sensor::run_can(args),
+        NodeCommand::Serial(args) => serial::run_serial(args),
+        NodeCommand::Can(args) => can::run_can(args),
         NodeCommand::Blend(args) => blend::run(args),
         NodeCommand::Smooth(args) => smooth::run(args),
         NodeCommand::List(args) => list::run(args),

@@ -3,7 +3,7 @@
 //! counted rather than delaying every later one.
 
 use super::runtime::{run_node, NodeCommon, NodeContext};
-use crate::transport::{unix_ns, PayloadWriter};
+use crate::transport::unix_ns;
 use anyhow::{Context, Result};
 use clap::Args;
 use shroud_core::format::parse_triangle_mesh;
@@ -11,7 +11,6 @@ use shroud_core::message::{CloudView, SensorPose, TopicKind};
 use shroud_sim::{RangeScanner, ScanResolution, Scene};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use zenoh::qos::CongestionControl;
 use zenoh::Wait;
 
 #[derive(Debug, Clone, Args)]
@@ -54,9 +53,8 @@ pub fn run(args: ScannerArgs) -> Result<()> {
     );
     anyhow::ensure!(args.time_scale.is_finite(), "--time-scale must be finite");
     let scene = scene(&args)?;
-    let shm = args.common.zenoh.shm.is_on();
     let common = args.common.clone();
-    run_node(&common, "scanner", move |ctx| serve(ctx, args, scene, shm))
+    run_node(&common, "scanner", move |ctx| serve(ctx, args, scene))
 }
 
 /// The scene by name; `scan-mesh` orbits a range scanner around the user's mesh.
@@ -94,17 +92,11 @@ fn scene(args: &ScannerArgs) -> Result<Scene> {
     Ok(scene)
 }
 
-fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene, shm: bool) -> Result<()> {
-    let key = ctx.key(TopicKind::Cloud, &args.stream)?;
-    // A sensor never waits for a slow subscriber: the next frame supersedes this one.
-    let publisher = ctx
-        .session
-        .declare_publisher(&key)
-        .congestion_control(CongestionControl::Drop)
-        .wait()
-        .map_err(|e| anyhow::anyhow!("publisher {key}: {e}"))?;
+fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene) -> Result<()> {
+    let publisher = ctx.publisher(TopicKind::Cloud, &args.stream)?;
+    let key = publisher.key_expr().to_string();
     // Room for a few frames in flight: 12 bytes a point plus the header.
-    let writer = PayloadWriter::new(shm, 4 * (args.points * 12 + 4096));
+    let writer = ctx.payload_writer(4 * (args.points * 12 + 4096));
     tracing::info!(%key, scene = scene.name(), points = args.points, rate = args.rate, shm = writer.uses_shm(), "scanning");
     let period = Duration::from_secs_f64(1.0 / args.rate);
     let start = Instant::now();

@@ -6,7 +6,7 @@
 //! Points outside the domain are skipped and counted.
 
 use super::runtime::{run_node, NodeCommon, NodeContext};
-use crate::cli::SmoothDomainArgs;
+use crate::args::SmoothDomainArgs;
 use crate::transport::{unix_ns, Mailbox};
 use anyhow::Result;
 use clap::Args;
@@ -59,13 +59,13 @@ fn serve(
     corrections: usize,
 ) -> Result<()> {
     let input = ctx.key(TopicKind::Cloud, &args.input)?;
-    let output = ctx.key(
+    let publisher = ctx.publisher(
         TopicKind::Smooth,
         args.output.as_deref().unwrap_or(&args.input),
     )?;
+    let output = publisher.key_expr().to_string();
     let mailbox = Arc::new(Mailbox::new(1));
     let _subscriber = ctx.subscribe_into(&input, &mailbox)?;
-    let publisher = ctx.latest_publisher(&output)?;
     tracing::info!(%input, %output, functions = fitter.basis.len(), kind = parametrisation.kind(), "fitting");
     ctx.metrics.set("functions", fitter.basis.len() as f64);
     // The last surface published: a parametric fit of the next cloud starts

@@ -20,16 +20,18 @@ const PARENT_POLL: Duration = Duration::from_millis(150);
 pub fn die_with_parent(cmd: &mut std::process::Command) {
     let parent = std::process::id() as libc::pid_t;
     cmd.env(PARENT_PID_ENV, parent.to_string());
-    // SAFETY: only async-signal-safe calls (prctl, getppid, kill, getpid) run
-    // between fork and exec.
+    // SAFETY: only async-signal-safe calls (prctl, getppid) run between fork
+    // and exec, and the error is built from a plain code (no allocation).
     unsafe {
         cmd.pre_exec(move || {
             if libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGTERM) != 0 {
                 return Err(std::io::Error::last_os_error());
             }
-            // The parent may have died before prctl took effect.
+            // The parent may have died before prctl took effect: fail the
+            // spawn (a signal would only reach the parent's inherited
+            // handlers here, before exec).
             if libc::getppid() != parent {
-                libc::kill(libc::getpid(), libc::SIGTERM);
+                return Err(std::io::Error::from_raw_os_error(libc::ESRCH));
             }
             Ok(())
         });
@@ -88,17 +90,23 @@ pub fn silence_broken_outputs() {
     redirect_broken(&mut outputs(), 0);
 }
 
-/// Readies stderr for a process's last line before it exits: broken outputs
-/// silenced, and stderr non-blocking, so that a reader that is alive but stuck
-/// (a full pipe) cannot hold the exit up; the line may then be lost.
-pub fn prepare_last_words() {
+/// Writes a process's last line to stderr and exits with `code`, whatever
+/// else is stuck: the line goes out with one raw write(2) (no lock that a
+/// thread blocked on a full pipe could hold), skipped if stderr cannot take
+/// it, and `_exit` runs no destructor or atexit handler that could hang.
+pub fn last_words_and_exit(line: &str, code: libc::c_int) -> ! {
     silence_broken_outputs();
-    // SAFETY: fcntl(2) on stderr with flags it just returned.
+    let mut p = libc::pollfd {
+        fd: 2,
+        events: libc::POLLOUT,
+        revents: 0,
+    };
+    // SAFETY: poll/write on stderr with a valid buffer, then _exit.
     unsafe {
-        let flags = libc::fcntl(2, libc::F_GETFL);
-        if flags >= 0 {
-            libc::fcntl(2, libc::F_SETFL, flags | libc::O_NONBLOCK);
+        if libc::poll(&mut p, 1, 100) == 1 && p.revents & libc::POLLOUT != 0 {
+            libc::write(2, line.as_ptr().cast(), line.len());
         }
+        libc::_exit(code)
     }
 }
 
@@ -123,21 +131,26 @@ fn redirect_broken(fds: &mut [libc::pollfd], timeout_ms: libc::c_int) -> bool {
     for p in fds.iter_mut().filter(|p| n > 0 && p.revents != 0) {
         if p.revents & libc::POLLNVAL != 0 {
             p.fd = -1;
-        } else if p.revents & (libc::POLLERR | libc::POLLHUP) != 0 {
-            to_dev_null(p.fd);
+        } else if p.revents & (libc::POLLERR | libc::POLLHUP) != 0 && !to_dev_null(p.fd) {
+            // Still broken (no descriptor to spare): stop watching it rather
+            // than spin on it.
+            p.fd = -1;
         }
     }
     fds.iter().any(|p| p.fd >= 0)
 }
 
-fn to_dev_null(fd: libc::c_int) {
+/// Points `fd` at /dev/null; whether that worked.
+fn to_dev_null(fd: libc::c_int) -> bool {
     // SAFETY: open/dup2/close on a path literal and descriptors we own; dup2
     // swaps the descriptor atomically under concurrent writers.
     unsafe {
         let null = libc::open(c"/dev/null".as_ptr(), libc::O_WRONLY | libc::O_CLOEXEC);
-        if null >= 0 {
-            libc::dup2(null, fd);
-            libc::close(null);
+        if null < 0 {
+            return false;
         }
+        let swapped = libc::dup2(null, fd) >= 0;
+        libc::close(null);
+        swapped
     }
 }

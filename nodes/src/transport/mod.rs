@@ -8,14 +8,16 @@ mod clock;
 mod lifeline;
 mod mailbox;
 mod publish;
+mod qos;
 mod signal;
 
 pub use args::{OnOff, ZenohArgs};
 pub use clock::{monotonic_ns, unix_ns};
 pub use lifeline::{
-    die_with_parent, keep_outputs_writable, prepare_last_words, silence_broken_outputs,
+    die_with_parent, keep_outputs_writable, last_words_and_exit, silence_broken_outputs,
     watch_parent,
 };
 pub use mailbox::Mailbox;
 pub use publish::PayloadWriter;
+pub use qos::topic_publisher;
 pub use signal::shutdown_signal;

@@ -27,9 +27,17 @@ pub struct Decision {
     pub report: Option<GuardReport>,
     /// Fresh views used.
     pub views: usize,
-    /// Stamp, sequence and age of the oldest view used (or of the newest
-    /// stale one), for the record.
-    pub oldest: Option<(u64, u64, u64)>,
+    /// The oldest view used (for `stale`, the newest one held), for the record.
+    pub oldest: Option<SurrogateRecord>,
+}
+
+/// Which surrogate a decision rests on: its source cloud's stamp (the
+/// device's word) and sequence, and its age at the decision.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SurrogateRecord {
+    pub stamp_ns: u64,
+    pub sequence: u64,
+    pub age_ns: u64,
 }
 
 impl Decision {
@@ -91,10 +99,18 @@ impl CollisionGuard {
         &self.policy
     }
 
+    /// Forgets `view`'s surrogate: a newer one arrived that could not be used
+    /// (corrupted, uncertified), so the older one no longer vouches.
+    pub fn invalidate(&mut self, view: usize) {
+        if let Some(slot) = self.held.get_mut(view) {
+            *slot = None;
+        }
+    }
+
     /// Takes a surrogate of `view` that reached the guard at `arrived_ns`
     /// (monotonic), unless its source stamp is too far from `wall_ns` (the
-    /// guard's wall clock): then the view keeps its previous surrogate, which
-    /// ages out.
+    /// guard's wall clock): then the view is emptied, since its pipeline's
+    /// timing cannot be trusted.
     pub fn accept(
         &mut self,
         view: usize,
@@ -106,7 +122,11 @@ impl CollisionGuard {
             .held
             .get_mut(view)
             .ok_or(SurrogateRejected::UnknownView(view))?;
-        check_skew(input.stamp_ns, wall_ns, &self.policy)?;
+        if let Err(refused) = check_skew(input.stamp_ns, wall_ns, &self.policy) {
+            // Timing that cannot be trusted: the view vouches for nothing.
+            *slot = None;
+            return Err(refused);
+        }
         *slot = Some(HeldSurrogate { input, arrived_ns });
         Ok(())
     }
@@ -115,7 +135,7 @@ impl CollisionGuard {
     pub fn decide(&self, shapes: &[WorldShape], now_ns: u64) -> Result<Decision, GuardError> {
         let held: Vec<&HeldSurrogate> = self.held.iter().flatten().collect();
         if held.is_empty() {
-            let reason = format!("no surrogate yet on {}", self.views.join(", "));
+            let reason = format!("no usable surrogate on {}", self.views.join(", "));
             return Ok(self.without_report(GuardVerdict::NoSurrogate, reason, None));
         }
         let fresh: Vec<&HeldSurrogate> = held
@@ -197,7 +217,7 @@ impl CollisionGuard {
         &self,
         verdict: GuardVerdict,
         reason: String,
-        oldest: Option<(u64, u64, u64)>,
+        oldest: Option<SurrogateRecord>,
     ) -> Decision {
         Decision {
             verdict,
@@ -216,7 +236,7 @@ impl CollisionGuard {
         (joints_stamp_ns, joints_sequence): (u64, u64),
         check_ns: u64,
     ) -> CollisionMessage {
-        let (stamp, sequence, age) = decision.oldest.unwrap_or_default();
+        let record = decision.oldest.unwrap_or_default();
         let (min_clearance, closest_link, links, unobserved) = match &decision.report {
             Some(r) => (
                 r.min_clearance,
@@ -235,9 +255,9 @@ impl CollisionGuard {
             joints_stamp_ns,
             joints_sequence,
             arm: arm.to_owned(),
-            surrogate_stamp_ns: stamp,
-            surrogate_sequence: sequence,
-            surrogate_age_ns: age,
+            surrogate_stamp_ns: record.stamp_ns,
+            surrogate_sequence: record.sequence,
+            surrogate_age_ns: record.age_ns,
             views: decision.views as u32,
             verdict: decision.verdict,
             stop: decision.verdict != GuardVerdict::Clear,
@@ -264,6 +284,10 @@ impl CollisionGuard {
     }
 }
 
-fn record(h: &HeldSurrogate, now_ns: u64) -> (u64, u64, u64) {
-    (h.input.stamp_ns, h.input.sequence, h.age_ns(now_ns))
+fn record(h: &HeldSurrogate, now_ns: u64) -> SurrogateRecord {
+    SurrogateRecord {
+        stamp_ns: h.input.stamp_ns,
+        sequence: h.input.sequence,
+        age_ns: h.age_ns(now_ns),
+    }
 }

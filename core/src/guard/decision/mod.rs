@@ -15,6 +15,6 @@ mod view;
 #[cfg(test)]
 mod tests;
 
-pub use decider::{CollisionGuard, Decision};
+pub use decider::{CollisionGuard, Decision, SurrogateRecord};
 pub use policy::{GuardPolicy, UnobservedPolicy};
 pub use view::{SurrogateInput, SurrogateRejected};

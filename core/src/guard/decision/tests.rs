@@ -115,7 +115,7 @@ fn no_surrogate_then_clear_then_stale_by_arrival_and_pipeline_delay() {
     let d = g.decide(&above_floor(), 10 * S + 900 * MS).unwrap();
     assert_eq!(d.verdict, GuardVerdict::Clear, "{}", d.reason);
     assert_eq!(d.views, 1);
-    assert_eq!(d.oldest.unwrap().2, S);
+    assert_eq!(d.oldest.unwrap().age_ns, S);
     let d = g.decide(&above_floor(), 10 * S + 900 * MS + 1).unwrap();
     assert_eq!(d.verdict, GuardVerdict::Stale);
     assert!(d.report.is_none());
@@ -153,13 +153,20 @@ fn device_stamps_do_not_decide_freshness_and_skewed_ones_are_refused() {
         g.decide(&above_floor(), 0).unwrap().verdict,
         GuardVerdict::Clear
     );
-    // A skewed newcomer leaves the previous surrogate to age out.
+    // A skewed newcomer empties the view: its timing cannot be trusted.
     let mut late = view(&points, TOP, 0);
     late.stamp_ns = WALL + 3600 * S;
     assert!(g.accept(0, late, 500 * MS, WALL).is_err());
     assert_eq!(
-        g.decide(&above_floor(), S + 1).unwrap().verdict,
-        GuardVerdict::Stale
+        g.decide(&above_floor(), 500 * MS).unwrap().verdict,
+        GuardVerdict::NoSurrogate
+    );
+    // So does one that could not be decoded.
+    g.accept(0, view(&points, TOP, 0), 0, WALL).unwrap();
+    g.invalidate(0);
+    assert_eq!(
+        g.decide(&above_floor(), 0).unwrap().verdict,
+        GuardVerdict::NoSurrogate
     );
     // The check can be switched off (replays of old logs).
     let mut off = guard(

@@ -2,8 +2,8 @@
 //! serial protocol or SLCAN to a pseudo-terminal (or an existing port), or
 //! writing a candump log.
 
-use super::pty::Pty;
-use super::sim::{CandumpWriter, ScanSink, SerialSensorWriter, SlcanWriter};
+use crate::ingest::pty::Pty;
+use crate::ingest::sim::{CandumpWriter, ScanSink, SerialSensorWriter, SlcanWriter};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use shroud_core::ingest::can::{CanSensorConfig, MAX_CAN_POINTS, MAX_EXTENDED_ID, MAX_STANDARD_ID};
@@ -249,7 +249,7 @@ fn stream(
         k += 1;
         if paced {
             let due = start + period.mul_f64(k as f64);
-            super::backoff::sleep_unless_stopped(
+            crate::ingest::sleep_unless_stopped(
                 due.saturating_duration_since(Instant::now()),
                 stop,
             );
