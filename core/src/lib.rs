@@ -3,6 +3,7 @@
 //! certification, queries, and the file formats. No I/O, no async: every function
 //! here takes values or byte slices and returns values.
 
+pub mod backlog;
 pub mod blend;
 pub mod cloud;
 pub mod format;

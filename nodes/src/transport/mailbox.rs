@@ -1,21 +1,18 @@
-//! A bounded queue between a zenoh callback and a worker thread that drops the
-//! OLDEST item when full and counts every drop: a fitter that falls behind works
-//! on the freshest cloud instead of building an unbounded backlog.
+//! A bounded queue between a zenoh callback and a worker thread, with core's
+//! drop-oldest backlog policy ([`DropOldest`]): a lock, a condition variable
+//! to wake the worker, and a close that wakes it for good.
 
-use std::collections::VecDeque;
-use std::sync::atomic::{AtomicU64, Ordering};
+use shroud_core::backlog::DropOldest;
 use std::sync::{Condvar, Mutex, MutexGuard};
 use std::time::Duration;
 
 pub struct Mailbox<T> {
     queue: Mutex<State<T>>,
     ready: Condvar,
-    capacity: usize,
-    dropped: AtomicU64,
 }
 
 struct State<T> {
-    items: VecDeque<T>,
+    items: DropOldest<T>,
     closed: bool,
 }
 
@@ -23,12 +20,10 @@ impl<T> Mailbox<T> {
     pub fn new(capacity: usize) -> Self {
         Self {
             queue: Mutex::new(State {
-                items: VecDeque::new(),
+                items: DropOldest::new(capacity),
                 closed: false,
             }),
             ready: Condvar::new(),
-            capacity: capacity.max(1),
-            dropped: AtomicU64::new(0),
         }
     }
 
@@ -44,14 +39,8 @@ impl<T> Mailbox<T> {
         if state.closed {
             return 0;
         }
-        let mut dropped = 0;
-        while state.items.len() >= self.capacity {
-            state.items.pop_front();
-            dropped += 1;
-        }
-        state.items.push_back(item);
+        let dropped = state.items.push(item);
         drop(state);
-        self.dropped.fetch_add(dropped, Ordering::Relaxed);
         self.ready.notify_one();
         dropped
     }
@@ -63,7 +52,7 @@ impl<T> Mailbox<T> {
             .ready
             .wait_timeout_while(state, timeout, |s| s.items.is_empty() && !s.closed)
             .unwrap_or_else(|p| p.into_inner());
-        state.items.pop_front()
+        state.items.pop()
     }
 
     /// Wakes every waiter and refuses further items.
@@ -78,7 +67,7 @@ impl<T> Mailbox<T> {
 
     /// Items dropped because the worker fell behind, since creation.
     pub fn dropped(&self) -> u64 {
-        self.dropped.load(Ordering::Relaxed)
+        self.lock().items.dropped()
     }
 
     pub fn len(&self) -> usize {
