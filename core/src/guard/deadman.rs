@@ -112,12 +112,7 @@ impl Deadman {
         let Some(answered) = known else {
             return VerdictUse::Unknown;
         };
-        let after_stop = match self.stop {
-            None => true,
-            Some((None, _)) => true,
-            Some((Some(s), _)) => answered.sequence > s,
-        };
-        if !after_stop {
+        if !self.after_stop(answered.sequence) {
             return VerdictUse::Superseded;
         }
         if self.clear.is_none_or(|c| answered.sequence > c.sequence) {
@@ -126,13 +121,17 @@ impl Deadman {
         VerdictUse::Applied
     }
 
+    /// Whether joint state `sequence` was sent after the last stop arrived.
+    fn after_stop(&self, sequence: u64) -> bool {
+        match self.stop {
+            Some((Some(s), _)) => sequence > s,
+            _ => true,
+        }
+    }
+
     /// What the consumer may do at `now_ns`.
     pub fn motion(&self, now_ns: u64) -> Motion {
-        let clear = self.clear.filter(|c| match self.stop {
-            None => true,
-            Some((None, _)) => true,
-            Some((Some(s), _)) => c.sequence > s,
-        });
+        let clear = self.clear.filter(|c| self.after_stop(c.sequence));
         match (clear, self.stop) {
             (Some(c), _) if now_ns.saturating_sub(c.at_ns) <= self.deadline_ns => Motion::Move,
             (None, Some((_, v))) => Motion::Halt(v),
@@ -267,18 +266,19 @@ mod tests {
     }
 
     /// Exhaustive over short histories of sends, clears and stops (of the
-    /// newest or the oldest joint state, in any order): the consumer moves
-    /// only while it holds a clear for a joint state sent within the deadline
-    /// and after every stop that has arrived.
+    /// newest or the oldest joint state, or of none, in any order): the
+    /// consumer moves exactly while it holds a clear for a joint state sent
+    /// within the deadline and after every stop that has arrived.
     #[test]
-    fn never_moves_without_a_fresh_clear_newer_than_every_stop() {
-        // 0 send, 1 clear newest, 2 stop newest, 3 clear oldest, 4 stop oldest
+    fn moves_exactly_while_a_fresh_clear_is_newer_than_every_stop() {
+        // 0 send, 1 clear newest, 2 stop newest, 3 clear oldest, 4 stop
+        // oldest, 5 stop of an undecodable joint state (no sequence)
         let mut histories = vec![vec![]];
         for _ in 0..6 {
             histories = histories
                 .into_iter()
                 .flat_map(|h: Vec<u8>| {
-                    (0u8..5).map(move |e| {
+                    (0u8..6).map(move |e| {
                         let mut h = h.clone();
                         h.push(e);
                         h
@@ -303,6 +303,9 @@ mod tests {
                 let s = sent.len() as u64;
                 send(&mut d, s, now);
                 sent.push((s, now));
+            } else if e == 5 {
+                d.verdict(u64::MAX, 0, STOP);
+                stops.push(sent.last().map(|s| s.0));
             } else if let Some(&(seq, _)) = if e >= 3 { sent.first() } else { sent.last() } {
                 if e % 2 == 1 {
                     answer(&mut d, seq, CLEAR);
@@ -312,17 +315,12 @@ mod tests {
                     stops.push(sent.last().map(|s| s.0));
                 }
             }
-            if d.motion(now) == Motion::Move {
-                let ok = clears.iter().any(|&seq| {
-                    let sent_at = sent[seq as usize].1;
-                    let after_stops = stops.iter().all(|s| s.is_none_or(|s| seq > s));
-                    now - sent_at <= d.deadline_ns() && after_stops
-                });
-                assert!(
-                    ok,
-                    "moved without a fresh clear after every stop: {h:?} at {t}"
-                );
-            }
+            let ok = clears.iter().any(|&seq| {
+                let sent_at = sent[seq as usize].1;
+                let after_stops = stops.iter().all(|s| s.is_none_or(|s| seq > s));
+                now - sent_at <= d.deadline_ns() && after_stops
+            });
+            assert_eq!(d.motion(now) == Motion::Move, ok, "{h:?} at step {t}");
         }
     }
 }

@@ -3,7 +3,7 @@
 //! scans; each is published as a cloud.
 
 use super::runtime::{run_node, NodeCommon};
-use super::scan_publisher::cloud_publisher;
+use super::scan_publisher::{cloud_publisher, max_skew_ns};
 use crate::ingest::{run_can_reader, CanReaderConfig, CanSourceSpec};
 use anyhow::Result;
 use clap::Args;
@@ -25,13 +25,14 @@ pub struct CanNodeArgs {
 }
 
 pub fn run_can(args: CanNodeArgs) -> Result<()> {
+    let max_skew_ns = max_skew_ns(args.max_skew)?;
     let spec: CanSourceSpec = args
         .source
         .parse()
         .map_err(|e| anyhow::anyhow!("--source {:?}: {e}", args.source))?;
     let common = args.common.clone();
     run_node(&common, "can", move |ctx| {
-        let mut publish = cloud_publisher(&ctx, &args.stream, &args.source, args.max_skew)?;
+        let mut publish = cloud_publisher(&ctx, &args.stream, &args.source, max_skew_ns)?;
         let stats = run_can_reader(
             &mut || spec.open(),
             &CanReaderConfig::default(),

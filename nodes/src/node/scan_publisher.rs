@@ -9,6 +9,12 @@ use crate::transport::unix_ns;
 use anyhow::Result;
 use shroud_core::ingest::Scan;
 use shroud_core::message::{check_stamp_skew, max_skew_ns_from_secs, SensorPose, TopicKind};
+
+/// `--max-skew` in seconds (`inf`: no check) as nanoseconds, or a named error.
+pub(super) fn max_skew_ns(seconds: f64) -> Result<u64> {
+    max_skew_ns_from_secs(seconds)
+        .ok_or_else(|| anyhow::anyhow!("--max-skew must be positive (inf: no check)"))
+}
 use std::sync::Arc;
 use std::time::Instant;
 use zenoh::Wait;
@@ -19,10 +25,8 @@ pub(super) fn cloud_publisher<'a>(
     ctx: &'a Arc<NodeContext>,
     stream: &str,
     device: &str,
-    max_skew: f64,
+    max_skew_ns: u64,
 ) -> Result<impl FnMut(Scan, &ReaderStats) + 'a> {
-    let max_skew_ns = max_skew_ns_from_secs(max_skew)
-        .ok_or_else(|| anyhow::anyhow!("--max-skew must be positive (inf: no check)"))?;
     let device = device.to_owned();
     let publisher = ctx.publisher(TopicKind::Cloud, stream)?;
     let key = publisher.key_expr().to_string();

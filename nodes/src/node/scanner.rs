@@ -42,7 +42,7 @@ pub struct ScannerArgs {
     pub mesh: Option<std::path::PathBuf>,
     /// A JSON scene configuration (`shroud_sim::Scene`, as `shroud sim
     /// --config`), instead of `--scene`, `--points` and `--seed`.
-    #[arg(long, conflicts_with_all = ["scene", "mesh"])]
+    #[arg(long, conflicts_with_all = ["scene", "mesh", "points", "seed"])]
     pub config: Option<std::path::PathBuf>,
 }
 
@@ -96,8 +96,9 @@ fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene) -> Result<()> {
     let publisher = ctx.publisher(TopicKind::Cloud, &args.stream)?;
     let key = publisher.key_expr().to_string();
     // Room for a few frames in flight: 12 bytes a point plus the header.
-    let writer = ctx.payload_writer(4 * (args.points * 12 + 4096));
-    tracing::info!(%key, scene = scene.name(), points = args.points, rate = args.rate, shm = writer.uses_shm(), "scanning");
+    let points = scene.points();
+    let writer = ctx.payload_writer(4 * (points * 12 + 4096));
+    tracing::info!(%key, scene = scene.name(), points, rate = args.rate, shm = writer.uses_shm(), "scanning");
     let period = Duration::from_secs_f64(1.0 / args.rate);
     let start = Instant::now();
     let mut next = start;
@@ -114,11 +115,12 @@ fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene) -> Result<()> {
             ctx.metrics.add("missed_ticks", behind);
         }
         next += period * (behind as u32 + 1);
+        // The simulator is the sensor: the cloud shows the scene at the time
+        // read here, so its age counts from now (generation included).
+        let sampled = Instant::now();
         let points = scene.generate(start.elapsed().as_secs_f64() * args.time_scale)?;
-        // The simulator is the sensor: its cloud enters shroud when generated.
-        let produced = Instant::now();
         let msg = CloudView::new(unix_ns(), sequence, &source, SensorPose::default(), &points)
-            .with_pipeline_ns(produced.elapsed().as_nanos() as u64)
+            .with_pipeline_ns(sampled.elapsed().as_nanos() as u64)
             .aligned()?;
         let payload = writer.encode(&msg)?;
         match publisher.put(payload).wait() {

@@ -2,7 +2,7 @@
 //! (from `crate::ingest`) decodes scans; each is published as a cloud.
 
 use super::runtime::{run_node, NodeCommon};
-use super::scan_publisher::cloud_publisher;
+use super::scan_publisher::{cloud_publisher, max_skew_ns};
 use crate::ingest::{run_serial_reader, SerialReaderConfig};
 use anyhow::Result;
 use clap::Args;
@@ -27,9 +27,10 @@ pub struct SerialNodeArgs {
 
 pub fn run_serial(args: SerialNodeArgs) -> Result<()> {
     let config = SerialReaderConfig::new(&args.port, args.baud);
+    let max_skew_ns = max_skew_ns(args.max_skew)?;
     let common = args.common.clone();
     run_node(&common, "serial", move |ctx| {
-        let mut publish = cloud_publisher(&ctx, &args.stream, &args.port, args.max_skew)?;
+        let mut publish = cloud_publisher(&ctx, &args.stream, &args.port, max_skew_ns)?;
         let stats = run_serial_reader(&config, &mut publish, ctx.stop_flag())?;
         tracing::info!("serial reader stopped: {stats}");
         Ok(())

@@ -101,9 +101,12 @@ pub fn last_words_and_exit(line: &str, code: libc::c_int) -> ! {
         events: libc::POLLOUT,
         revents: 0,
     };
-    // SAFETY: poll/write on stderr with a valid buffer, then _exit.
+    // SAFETY: poll/alarm/write on stderr with a valid buffer, then _exit.
     unsafe {
         if libc::poll(&mut p, 1, 100) == 1 && p.revents & libc::POLLOUT != 0 {
+            // A stopped terminal can block even after POLLOUT: SIGALRM's
+            // default action ends the process then.
+            libc::alarm(1);
             libc::write(2, line.as_ptr().cast(), line.len());
         }
         libc::_exit(code)

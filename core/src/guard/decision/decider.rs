@@ -55,14 +55,21 @@ impl Decision {
 
 impl CollisionGuard {
     /// A guard over the named views for an arm with the named links.
+    ///
+    /// Clearances are capped at `max_report` before the motion allowance is
+    /// subtracted, so `max_report` is raised to at least `stop_distance +
+    /// max_obstacle_speed * max_age`: otherwise any surrogate older than
+    /// `(max_report - stop_distance) / speed` would stop the arm in empty space.
     pub fn new(
         views: Vec<String>,
         links: Vec<String>,
         policy: GuardPolicy,
-        config: GuardConfig,
+        mut config: GuardConfig,
     ) -> Result<Self, GuardError> {
         policy.validate()?;
         config.validate()?;
+        let reach = config.max_obstacle_speed * policy.max_age_ns as f64 * 1e-9;
+        config.max_report = config.max_report.max(config.stop_distance + reach);
         if views.is_empty() {
             return Err(GuardError::BadConfig(
                 "the guard needs at least one view".into(),

@@ -272,6 +272,30 @@ fn a_second_view_clears_what_the_top_view_cannot() {
 }
 
 #[test]
+fn max_report_leaves_room_for_the_motion_allowance() {
+    let fast = GuardConfig {
+        max_obstacle_speed: 1.0,
+        ..config()
+    };
+    let policy = GuardPolicy {
+        unobserved: UnobservedPolicy::Ignore,
+        ..GuardPolicy::default()
+    };
+    let g = guard_with(&["top"], policy, fast);
+    // 0.05 m stop distance plus 1 m/s for the 1 s maximum age.
+    assert!((g.config().max_report - 1.05).abs() < 1e-12);
+    // Far from everything, an old surrogate still clears (with the cap at
+    // 0.2 m, 0.6 s at 1 m/s would leave nothing).
+    let mut g = g;
+    g.accept(0, view(&floor_and_wall(), TOP, 0), 0, WALL)
+        .unwrap();
+    let shapes = vec![sphere(1, [-0.5, 0.0, 1.8], 0.05)];
+    let d = g.decide(&shapes, 600 * MS).unwrap();
+    assert_eq!(d.verdict, GuardVerdict::Clear, "{}", d.reason);
+    assert!(d.report.unwrap().min_clearance > config().stop_distance);
+}
+
+#[test]
 fn refused_joint_states_stop_with_their_reason() {
     let g = guard(&["top"], GuardPolicy::default());
     let d = Decision::refused("joint names differ");

@@ -11,7 +11,9 @@ use crate::transport::{
 };
 use anyhow::{Context, Result};
 use shroud_core::message::{check_name, TopicKind};
+use std::future::Future;
 use std::panic::AssertUnwindSafe;
+use std::pin::Pin;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
@@ -92,11 +94,19 @@ where
 {
     let topics = common.zenoh.topics()?;
     let alive = topics.key(TopicKind::Alive, name)?;
-    // A stop request is honoured while the session opens too (a router that
-    // never answers must not keep an orphan alive).
+    // One stop request for the node's whole life: its signal handlers are
+    // installed here, before anything can take a while, and a signal that
+    // arrives between the two waits below is not lost.
+    let stop_requested = stop_request(parent_gone);
+    tokio::pin!(stop_requested);
+    // Honoured while the session opens too (a router that never answers must
+    // not keep an orphan alive).
     let opened = tokio::select! {
         opened = open_and_announce(common, &alive) => opened?,
-        reason = stop_request(parent_gone) => {
+        reason = &mut stop_requested => {
+            stop.store(true, Ordering::Relaxed);
+            watchdog.arm();
+            silence_broken_outputs();
             tracing::info!(node = %name, "{reason} while starting: stopping");
             return Ok(());
         }
@@ -116,7 +126,7 @@ where
         let ctx = ctx.clone();
         tokio::task::spawn_blocking(move || body(ctx))
     };
-    let outcome = run_body(&ctx, worker, parent_gone, watchdog).await;
+    let outcome = run_body(&ctx, worker, stop_requested.as_mut(), watchdog).await;
     ctx.stop.store(true, Ordering::Relaxed);
     watchdog.arm();
     status.abort();
@@ -149,12 +159,12 @@ async fn open_and_announce(
 async fn run_body(
     ctx: &NodeContext,
     worker: tokio::task::JoinHandle<Result<()>>,
-    parent_gone: &Notify,
+    stop_requested: Pin<&mut impl Future<Output = &'static str>>,
     watchdog: &Watchdog,
 ) -> Result<()> {
     tokio::pin!(worker);
     tokio::select! {
-        reason = stop_request(parent_gone) => {
+        reason = stop_requested => {
             // The flag before the log line: if anything about logging goes
             // wrong, the body still stops.
             ctx.stop.store(true, Ordering::Relaxed);

@@ -8,8 +8,9 @@ use std::time::{Duration, Instant};
 use zenoh::Wait;
 
 pub(super) async fn publish_status(ctx: Arc<NodeContext>, kind: &'static str, period: f64) {
-    let Ok(key) = ctx.key(TopicKind::Status, &ctx.name) else {
-        return;
+    let publisher = match ctx.publisher(TopicKind::Status, &ctx.name) {
+        Ok(publisher) => publisher,
+        Err(e) => return tracing::error!("no status messages: {e:#}"),
     };
     let start = Instant::now();
     let mut msg = NodeStatusMessage::new(&ctx.name, kind, std::process::id());
@@ -21,7 +22,7 @@ pub(super) async fn publish_status(ctx: Arc<NodeContext>, kind: &'static str, pe
         ctx.metrics.fill(&mut msg);
         match msg.to_bytes() {
             Ok(bytes) => {
-                if let Err(e) = ctx.session.put(&key, bytes).wait() {
+                if let Err(e) = publisher.put(bytes).wait() {
                     tracing::warn!("status publish failed: {e}");
                 }
             }

@@ -43,9 +43,12 @@ impl Watchdog {
                     2,
                 );
             };
-            let _ = std::thread::Builder::new()
+            let spawned = std::thread::Builder::new()
                 .name("stop-deadline".into())
                 .spawn(expire);
+            if let Err(e) = spawned {
+                tracing::error!("no shutdown deadline (cannot start its thread): {e}");
+            }
         });
     }
 }
