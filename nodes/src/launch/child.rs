@@ -7,7 +7,6 @@ use anyhow::{Context, Result};
 use shroud_core::launch::NodeSpec;
 #[cfg(doc)]
 use shroud_core::launch::LAUNCHER_FLAGS;
-use std::io::Write;
 use std::process::Stdio;
 use tokio::io::{AsyncBufReadExt, AsyncRead, BufReader};
 use tokio::process::{Child, Command};
@@ -72,17 +71,18 @@ pub fn spawn(spec: &NodeSpec, wiring: &Wiring) -> Result<Child> {
     Ok(child)
 }
 
-/// Copies a child's output, prefixed. It keeps reading even when our own
-/// output fails (`println!` would panic and drop the pipe): a child whose pipe
-/// has no reader gets EPIPE on every log line.
+/// Copies a child's output, prefixed, to the launcher's output queue. It
+/// keeps reading even when our own output fails or stalls (the queue drops,
+/// never blocks): a child whose pipe has no reader gets EPIPE on every log line.
 async fn prefix_lines(stream: impl AsyncRead + Unpin, name: String, is_err: bool) {
     let mut lines = BufReader::new(stream).lines();
     while let Ok(Some(line)) = lines.next_line().await {
-        let _ = if is_err {
-            writeln!(std::io::stderr(), "[{name}] {line}")
+        let text = format!("[{name}] {line}");
+        if is_err {
+            super::output::err(text);
         } else {
-            writeln!(std::io::stdout(), "[{name}] {line}")
-        };
+            super::output::out(text);
+        }
     }
 }
 

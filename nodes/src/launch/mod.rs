@@ -7,6 +7,7 @@
 
 mod child;
 mod monitor;
+mod output;
 mod supervise;
 
 use anyhow::{Context, Result};
@@ -63,5 +64,8 @@ pub fn run(args: LaunchArgs) -> Result<()> {
         .build()
         .context("cannot start the async runtime")?;
     let duration = (args.duration > 0.0).then(|| Duration::from_secs_f64(args.duration));
-    runtime.block_on(supervise::run_graph(file, args.node_log, duration))
+    let outcome = runtime.block_on(supervise::run_graph(file, args.node_log, duration));
+    // Every queued line (the children's last words too) before we exit.
+    output::flush(std::time::Duration::from_secs(2));
+    outcome
 }

@@ -1,6 +1,7 @@
 //! The launcher's live summary: folds status, surrogate and collision messages
 //! into a [`GraphSummary`] and prints its line every period.
 
+use super::output;
 use anyhow::Result;
 use shroud_core::message::{
     CollisionMessage, NodeStatusMessage, SurrogateMessage, TopicKind, Topics,
@@ -55,7 +56,7 @@ pub async fn run(session: zenoh::Session, topics: Result<Topics>, period: f64) {
         match sub {
             Ok(sub) => subscribers.push(sub),
             Err(e) => {
-                eprintln!("[launch] summary unavailable: {e}");
+                output::err(format!("[launch] summary unavailable: {e}"));
                 return;
             }
         }
@@ -66,6 +67,6 @@ pub async fn run(session: zenoh::Session, topics: Result<Topics>, period: f64) {
     loop {
         tick.tick().await;
         let line = lock(&summary).line(start.elapsed().as_secs_f64());
-        println!("{line}");
+        output::out(line);
     }
 }

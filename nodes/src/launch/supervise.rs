@@ -4,6 +4,7 @@
 
 use super::child::{self, Wiring};
 use super::monitor;
+use super::output;
 use crate::transport::{shutdown_signal, OnOff, ZenohArgs};
 use anyhow::Result;
 use shroud_core::launch::{Backoff, LaunchFile, NodeSpec, RestartDecision};
@@ -49,11 +50,11 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
         .map(|l| l.to_string())
         .collect();
     connect.extend(z.connect.iter().cloned());
-    println!(
+    output::out(format!(
         "[launch] namespace {:?}, nodes connect to {}",
         file.namespace,
         connect.join(", ")
-    );
+    ));
     let wiring = Wiring {
         namespace: file.namespace.clone(),
         mode: z.mode.clone(),
@@ -91,16 +92,16 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
     loop {
         tokio::select! {
             signal = shutdown_signal() => {
-                println!("[launch] {signal}: stopping every node");
+                output::out(format!("[launch] {signal}: stopping every node"));
                 break;
             }
             _ = &mut deadline => {
-                println!("[launch] --duration reached: stopping every node");
+                output::out("[launch] --duration reached: stopping every node");
                 break;
             }
             joined = nodes.join_next() => {
                 let Some(joined) = joined else {
-                    println!("[launch] every node has stopped");
+                    output::out("[launch] every node has stopped");
                     break;
                 };
                 let outcome = joined?;
@@ -108,7 +109,7 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
                     failed.push(outcome.name.clone());
                 }
                 if outcome.critical {
-                    println!("[launch] critical node {} is done: stopping the graph", outcome.name);
+                    output::out(format!("[launch] critical node {} is done: stopping the graph", outcome.name));
                     break;
                 }
             }
@@ -129,7 +130,7 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
     }
     let _ = session.close().await;
     anyhow::ensure!(failed.is_empty(), "nodes failed: {}", failed.join(", "));
-    println!("[launch] all nodes stopped cleanly");
+    output::out("[launch] all nodes stopped cleanly");
     Ok(())
 }
 
@@ -137,11 +138,11 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
 fn exited(name: &str, status: std::io::Result<std::process::ExitStatus>) -> bool {
     match status {
         Ok(status) => {
-            println!("[launch] {name} exited: {status}");
+            output::out(format!("[launch] {name} exited: {status}"));
             status.success()
         }
         Err(e) => {
-            println!("[launch] {name} exited: {e}");
+            output::out(format!("[launch] {name} exited: {e}"));
             false
         }
     }
@@ -166,11 +167,11 @@ async fn supervise(
         let started = Instant::now();
         let success = match child::spawn(&spec, &wiring) {
             Ok(mut process) => {
-                println!(
+                output::out(format!(
                     "[launch] started {} (pid {})",
                     spec.name,
                     process.id().unwrap_or(0)
-                );
+                ));
                 tokio::select! {
                     status = process.wait() => exited(&spec.name, status),
                     _ = stop.changed() => {
@@ -180,17 +181,17 @@ async fn supervise(
                 }
             }
             Err(e) => {
-                eprintln!("[launch] {e:#}");
+                output::err(format!("[launch] {e:#}"));
                 false
             }
         };
         match backoff.on_exit(success, started.elapsed()) {
             RestartDecision::RestartAfter(delay) => {
-                println!(
+                output::out(format!(
                     "[launch] restarting {} in {:.2} s",
                     spec.name,
                     delay.as_secs_f64()
-                );
+                ));
                 tokio::select! {
                     _ = tokio::time::sleep(delay) => {}
                     _ = stop.changed() => return outcome(OutcomeKind::Stopped),
@@ -198,10 +199,10 @@ async fn supervise(
             }
             RestartDecision::Stop => return outcome(OutcomeKind::Finished { success }),
             RestartDecision::GiveUp { failures } => {
-                eprintln!(
+                output::err(format!(
                     "[launch] giving up on {} after {failures} failures in a row",
                     spec.name
-                );
+                ));
                 return outcome(OutcomeKind::GaveUp);
             }
         }
