@@ -35,6 +35,9 @@ pub fn run(args: EchoArgs) -> Result<()> {
             .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))?;
         let deadline = (args.timeout > 0.0).then(|| tokio::time::Instant::now() + Duration::from_secs_f64(args.timeout));
         let mut printed = 0u64;
+        // One wait for the whole loop, so a signal between turns is not missed.
+        let stop_signal = crate::transport::shutdown_signal();
+        tokio::pin!(stop_signal);
         while args.count == 0 || printed < args.count {
             let next = sub.recv_async();
             let sample = match deadline {
@@ -44,7 +47,7 @@ pub fn run(args: EchoArgs) -> Result<()> {
                 },
                 None => tokio::select! {
                     s = next => s,
-                    _ = crate::transport::shutdown_signal() => break,
+                    _ = &mut stop_signal => break,
                 },
             };
             let Ok(sample) = sample else { break };

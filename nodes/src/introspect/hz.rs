@@ -40,10 +40,13 @@ pub fn run(args: HzArgs) -> Result<()> {
         let mut tick = tokio::time::interval(Duration::from_secs(1));
         tick.tick().await;
         let (mut last_n, mut last_b, mut total) = (0u64, 0u64, 0u64);
+        // One wait for the whole loop, so a signal between turns is not missed.
+        let stop_signal = crate::transport::shutdown_signal();
+        tokio::pin!(stop_signal);
         loop {
             tokio::select! {
                 _ = tick.tick() => {}
-                _ = crate::transport::shutdown_signal() => break,
+                _ = &mut stop_signal => break,
             }
             let (n, nb) = (count.load(Ordering::Relaxed), bytes.load(Ordering::Relaxed));
             let (dn, db) = (n - last_n, nb - last_b);

@@ -88,10 +88,14 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
         }
     };
     tokio::pin!(deadline);
+    // One signal wait for the whole loop: a new one per turn would miss a
+    // signal that lands while a turn handles a node's exit.
+    let stop_signal = shutdown_signal();
+    tokio::pin!(stop_signal);
     let mut failed = Vec::new();
     loop {
         tokio::select! {
-            signal = shutdown_signal() => {
+            signal = &mut stop_signal => {
                 output::out(format!("[launch] {signal}: stopping every node"));
                 break;
             }

@@ -180,10 +180,14 @@ async fn run_body(
     }
 }
 
-/// A signal, or the launcher that started this node gone.
-async fn stop_request(parent_gone: &Notify) -> &'static str {
-    tokio::select! {
-        signal = shutdown_signal() => signal,
-        _ = parent_gone.notified() => "launcher gone",
+/// A signal, or the launcher that started this node gone. The signal
+/// handlers are installed by this call, before the future is first polled.
+fn stop_request(parent_gone: &Notify) -> impl Future<Output = &'static str> + '_ {
+    let signal = shutdown_signal();
+    async move {
+        tokio::select! {
+            signal = signal => signal,
+            _ = parent_gone.notified() => "launcher gone",
+        }
     }
 }
