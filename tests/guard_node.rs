@@ -6,7 +6,8 @@
 mod common;
 
 use common::{
-    alive, free_port, hub, inbox, joint_spread, joint_spread_if_any, wiring, Inbox, Proc,
+    alive, free_port, hub, hub_on_free_port, inbox, joint_spread, joint_spread_if_any,
+    peer_session, wiring, Inbox, Proc,
 };
 use shroud_core::message::{CloudMessage, NodeStatusMessage, SurrogateMessage};
 use shroud_core::surrogate::{fit_surrogate, FitOptions, Sides};
@@ -159,8 +160,7 @@ fn assert_halts_for_no_verdict(status: &Inbox, joints: &Inbox, arm: &Proc, befor
 
 #[test]
 fn a_killed_guard_halts_the_arm_within_its_deadline() {
-    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
-    let session = hub(&endpoint);
+    let (endpoint, session) = hub_on_free_port();
     let ns = "e2e-deadman";
     let joints = inbox(&session, format!("shroud/{ns}/joints/demo_arm"));
     let status = inbox(&session, format!("shroud/{ns}/status/arm"));
@@ -191,8 +191,7 @@ fn put_sheet(session: &zenoh::Session, ns: &str, stamp_ns: u64, sequence: u64) {
 
 #[test]
 fn a_cloud_stamped_an_hour_ahead_is_a_counted_fault_not_a_fresh_surrogate() {
-    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
-    let session = hub(&endpoint);
+    let (endpoint, session) = hub_on_free_port();
     let ns = "e2e-skew";
     let verdicts = inbox(&session, format!("shroud/{ns}/collision/demo_arm"));
     let status = inbox(&session, format!("shroud/{ns}/status/guard"));
@@ -351,21 +350,13 @@ fn a_partition_between_arm_and_guard_halts_the_arm() {
         ns,
     ];
     let arm = start(&arm_args(), &arm_wiring);
-    let observer = {
-        let mut c = zenoh::Config::default();
-        for (k, v) in [
-            ("mode", "\"peer\"".to_string()),
-            ("connect/endpoints", format!("[\"{arm_listen}\"]")),
-            ("listen/endpoints", "[]".to_string()),
-            ("scouting/multicast/enabled", "false".to_string()),
-            ("scouting/gossip/enabled", "false".to_string()),
-            // The arm may not listen yet: keep trying.
-            ("connect/exit_on_failure", "false".to_string()),
-        ] {
-            c.insert_json5(k, &v).unwrap();
-        }
-        zenoh::open(c).wait().unwrap()
-    };
+    let observer = peer_session(&[
+        ("connect/endpoints", format!("[\"{arm_listen}\"]")),
+        ("listen/endpoints", "[]".to_string()),
+        ("scouting/gossip/enabled", "false".to_string()),
+        // The arm may not listen yet: keep trying.
+        ("connect/exit_on_failure", "false".to_string()),
+    ]);
     let joints = inbox(&observer, format!("shroud/{ns}/joints/demo_arm"));
     let status = inbox(&observer, format!("shroud/{ns}/status/arm"));
     wait_moving(&joints, "relay forwarding", &[&guard, &arm]);

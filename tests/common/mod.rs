@@ -153,31 +153,38 @@ pub fn free_port() -> u16 {
         .expect("a free port")
 }
 
-/// A zenoh peer session for the test, listening on `endpoint`, without scouting.
-pub fn hub(endpoint: &str) -> zenoh::Session {
+/// A zenoh peer session for the test without multicast scouting, with these
+/// further settings (JSON5 values by key).
+pub fn peer_session(settings: &[(&str, String)]) -> zenoh::Session {
     let mut config = zenoh::Config::default();
-    for (k, v) in [
+    let base = [
         ("mode", "\"peer\"".to_string()),
-        ("listen/endpoints", format!("[\"{endpoint}\"]")),
         ("scouting/multicast/enabled", "false".to_string()),
-    ] {
-        config.insert_json5(k, &v).expect("valid zenoh setting");
+    ];
+    for (k, v) in base.iter().chain(settings) {
+        config.insert_json5(k, v).expect("valid zenoh setting");
     }
     zenoh::open(config).wait().expect("test session opens")
 }
 
+/// A zenoh peer session for the test, listening on `endpoint`, without scouting.
+pub fn hub(endpoint: &str) -> zenoh::Session {
+    peer_session(&[("listen/endpoints", format!("[\"{endpoint}\"]"))])
+}
+
+/// A hub on a free loopback port, and that port's endpoint.
+pub fn hub_on_free_port() -> (String, zenoh::Session) {
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+    let session = hub(&endpoint);
+    (endpoint, session)
+}
+
 /// A zenoh peer session for the test that connects to `endpoint`.
 pub fn client_of(endpoint: &str) -> zenoh::Session {
-    let mut config = zenoh::Config::default();
-    for (k, v) in [
-        ("mode", "\"peer\"".to_string()),
+    peer_session(&[
         ("connect/endpoints", format!("[\"{endpoint}\"]")),
         ("listen/endpoints", "[\"tcp/127.0.0.1:0\"]".to_string()),
-        ("scouting/multicast/enabled", "false".to_string()),
-    ] {
-        config.insert_json5(k, &v).expect("valid zenoh setting");
-    }
-    zenoh::open(config).wait().expect("test session opens")
+    ])
 }
 
 /// The args that put a node on the test's hub.

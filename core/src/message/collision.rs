@@ -58,6 +58,31 @@ impl GuardVerdict {
         self as usize
     }
 
+    /// The guard's status counter of this verdict (`verdict_stop`, ...).
+    pub fn verdict_counter(self) -> &'static str {
+        [
+            "verdict_clear",
+            "verdict_stop",
+            "verdict_no_surrogate",
+            "verdict_stale",
+            "verdict_unobserved",
+            "verdict_no_verdict",
+        ][self.index()]
+    }
+
+    /// A verdict consumer's status counter of halts for this verdict
+    /// (`halts_stop`, `halts_no_verdict`, ...).
+    pub fn halt_counter(self) -> &'static str {
+        [
+            "halts_clear",
+            "halts_stop",
+            "halts_no_surrogate",
+            "halts_stale",
+            "halts_unobserved",
+            "halts_no_verdict",
+        ][self.index()]
+    }
+
     /// The wire name (`clear`, `stop`, `no-surrogate`, ...).
     pub fn name(self) -> &'static str {
         match self {
@@ -209,6 +234,10 @@ mod tests {
             assert_eq!(v.index(), i);
             let json = serde_json::to_string(&v).unwrap();
             assert_eq!(json, format!("\"{}\"", v.name()));
+            // Counters are the wire name in snake case behind their prefix.
+            let snake = v.name().replace('-', "_");
+            assert_eq!(v.verdict_counter(), format!("verdict_{snake}"));
+            assert_eq!(v.halt_counter(), format!("halts_{snake}"));
         }
     }
 }

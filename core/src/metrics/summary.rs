@@ -1,7 +1,7 @@
 //! The launcher's live one-line summary of a running graph: rates, latency,
 //! certificate and clearance, folded from the messages the graph publishes.
 
-use crate::message::{CollisionMessage, NodeStatusMessage, SurrogateMessage};
+use crate::message::{CollisionMessage, GuardVerdict, NodeStatusMessage, SurrogateMessage};
 use std::collections::BTreeMap;
 
 /// Latest known state of the graph.
@@ -105,17 +105,11 @@ fn arm_state(s: &NodeStatusMessage) -> String {
     } else {
         0.0
     };
-    let causes: Vec<String> = [
-        ("halts_stop", "stop"),
-        ("halts_stale", "stale"),
-        ("halts_no_surrogate", "no-surrogate"),
-        ("halts_unobserved", "unobserved"),
-        ("halts_no_verdict", "no-verdict"),
-    ]
-    .iter()
-    .filter(|(c, _)| s.counter(c) > 0)
-    .map(|(c, name)| format!("{} {name}", s.counter(c)))
-    .collect();
+    let causes: Vec<String> = GuardVerdict::ALL
+        .iter()
+        .filter(|v| s.counter(v.halt_counter()) > 0)
+        .map(|v| format!("{} {}", s.counter(v.halt_counter()), v.name()))
+        .collect();
     let state = if s.gauge("halted").unwrap_or(0.0) > 0.0 {
         format!(
             "HALTED for {:.1} s",

@@ -186,7 +186,7 @@ impl HaltLog {
         match (motion, self.since) {
             (Motion::Halt(v), None) => {
                 ctx.metrics.add("halts", 1);
-                ctx.metrics.add(HALT_COUNTERS[v.index()], 1);
+                ctx.metrics.add(v.halt_counter(), 1);
                 let why = if v == GuardVerdict::NoVerdict {
                     "no-verdict: no fresh clear verdict within the deadline"
                 } else {
@@ -212,13 +212,3 @@ impl HaltLog {
         m.set("halt_current_s", current);
     }
 }
-
-/// Status counters per halt cause, in [`GuardVerdict::ALL`] order.
-const HALT_COUNTERS: [&str; 6] = [
-    "halts_clear",
-    "halts_stop",
-    "halts_no_surrogate",
-    "halts_stale",
-    "halts_unobserved",
-    "halts_no_verdict",
-];

@@ -248,7 +248,7 @@ impl Checker {
             lock(&self.guard).message(decision, &self.arm_name, joints, check_ns);
         let m = &self.ctx.metrics;
         m.add("published", 1);
-        m.add(VERDICT_COUNTERS[out.verdict.index()], 1);
+        m.add(out.verdict.verdict_counter(), 1);
         if out.stop {
             m.add("stops", 1);
         }
@@ -266,13 +266,3 @@ impl Checker {
         }
     }
 }
-
-/// Status counters per verdict, in [`GuardVerdict::ALL`](shroud_core::message::GuardVerdict::ALL) order.
-const VERDICT_COUNTERS: [&str; 6] = [
-    "verdict_clear",
-    "verdict_stop",
-    "verdict_no_surrogate",
-    "verdict_stale",
-    "verdict_unobserved",
-    "verdict_no_verdict",
-];

@@ -104,9 +104,7 @@ where
     let opened = tokio::select! {
         opened = open_and_announce(common, &alive) => opened?,
         reason = &mut stop_requested => {
-            stop.store(true, Ordering::Relaxed);
-            watchdog.arm();
-            silence_broken_outputs();
+            begin_stop(stop, watchdog);
             tracing::info!(node = %name, "{reason} while starting: stopping");
             return Ok(());
         }
@@ -167,9 +165,7 @@ async fn run_body(
         reason = stop_requested => {
             // The flag before the log line: if anything about logging goes
             // wrong, the body still stops.
-            ctx.stop.store(true, Ordering::Relaxed);
-            watchdog.arm();
-            silence_broken_outputs();
+            begin_stop(&ctx.stop, watchdog);
             tracing::info!(node = %ctx.name, "{reason}: stopping");
             match tokio::time::timeout(BODY_GRACE, &mut worker).await {
                 Ok(joined) => joined.context("node body panicked")?,
@@ -178,6 +174,15 @@ async fn run_body(
         }
         joined = &mut worker => joined.context("node body panicked")?,
     }
+}
+
+/// What a stop request does first, before anything is logged: the body is
+/// told, the hard deadline starts, and broken outputs stop being written to
+/// (so that the log line that follows cannot fail).
+fn begin_stop(stop: &AtomicBool, watchdog: &Watchdog) {
+    stop.store(true, Ordering::Relaxed);
+    watchdog.arm();
+    silence_broken_outputs();
 }
 
 /// A signal, or the launcher that started this node gone. The signal
