@@ -626,3 +626,27 @@ fn bad_log_filters_are_named_errors() {
         "invalid --node-log filter",
     );
 }
+
+/// The guard's tolerances are checked before it starts: each bad value is a
+/// named error and a non-zero exit.
+#[test]
+fn bad_guard_settings_are_named_errors() {
+    let arm = concat!(env!("CARGO_MANIFEST_DIR"), "/launch/arms/demo_arm.toml");
+    let guard = |extra: &[&str]| {
+        let mut args = vec!["node", "guard", "--arm-file", arm];
+        args.extend_from_slice(extra);
+        shroud(&args)
+    };
+    fails_with(guard(&["--max-skew", "0"]), "--max-skew");
+    fails_with(guard(&["--max-age", "nan"]), "--max-age");
+    fails_with(guard(&["--max-obstacle-speed=-1"]), "max_obstacle_speed");
+    fails_with(guard(&["--unobserved", "maybe"]), "--unobserved");
+    fails_with(
+        guard(&["--surrogate", "a", "--surrogate", "a"]),
+        "given twice",
+    );
+    fails_with(
+        shroud(&["node", "arm", "--arm-file", arm, "--resume-after=-1"]),
+        "--resume-after",
+    );
+}

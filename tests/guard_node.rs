@@ -370,3 +370,55 @@ fn a_partition_between_arm_and_guard_halts_the_arm() {
     stop.store(true, Ordering::Relaxed);
     feeder.join().unwrap();
 }
+
+/// The guard answers joint states it cannot use with a stop that says why
+/// (silence would look like a partition), and counts each as malformed.
+#[test]
+fn unusable_joint_states_are_answered_with_a_stop_and_counted() {
+    let (endpoint, session) = hub_on_free_port();
+    let ns = "e2e-bad-joints";
+    let verdicts = inbox(&session, format!("shroud/{ns}/collision/demo_arm"));
+    let status = inbox(&session, format!("shroud/{ns}/status/guard"));
+    let stop = Arc::new(AtomicBool::new(false));
+    let feeder = keep_fresh(
+        session.clone(),
+        format!("shroud/{ns}/surrogate/far"),
+        stop.clone(),
+    );
+    let guard = start(&guard_args("far"), &wiring(&endpoint, ns));
+    let key = format!("shroud/{ns}/joints/demo_arm");
+    let wrong_names =
+        shroud_core::message::JointStateMessage::new(5, 9, "demo_arm", vec!["a".into()], vec![0.0])
+            .to_bytes()
+            .unwrap();
+    let deadline = Instant::now() + LONG;
+    let (mut undecodable, mut misnamed) = (false, false);
+    while !(undecodable && misnamed) {
+        assert!(Instant::now() < deadline, "no answers:\n{}", guard.output());
+        session
+            .put(&key, b"not a joint state".to_vec())
+            .wait()
+            .unwrap();
+        session.put(&key, wrong_names.clone()).wait().unwrap();
+        while let Ok(Some(s)) = verdicts.recv_timeout(Duration::from_millis(100)) {
+            let v = shroud_core::message::CollisionMessage::from_bytes(&s.payload().to_bytes())
+                .unwrap();
+            assert!(v.stop, "never clear: {v:?}");
+            if v.joints_sequence == u64::MAX {
+                assert!(v.reason.contains("undecodable joint state"), "{}", v.reason);
+                undecodable = true;
+            } else if v.joints_sequence == 9 {
+                assert!(v.reason.contains("joint names"), "{}", v.reason);
+                misnamed = true;
+            }
+        }
+    }
+    let counted = status_within(&status, Duration::from_millis(1500))
+        .map_or(0, |s| s.counter("dropped_malformed"));
+    assert!(
+        counted >= 2,
+        "each unusable joint state is counted: {counted}"
+    );
+    stop.store(true, Ordering::Relaxed);
+    feeder.join().unwrap();
+}
