@@ -4,16 +4,24 @@
 //!
 //! - [`serial`]: a framed binary protocol for serial range sensors;
 //! - [`can`]: a CAN range-sensor protocol over classic 8-byte frames, plus the
-//!   SLCAN (Lawicel ASCII) and candump-log codecs that carry CAN frames.
+//!   SLCAN (Lawicel ASCII) and candump-log codecs that carry CAN frames;
+//! - [`device`]: the sans-I/O contract of real sensors' drivers
+//!   ([`device::DeviceDriver`]) and the range scans they deliver;
+//! - [`assembly`]: range scans placed through a (moving) mount into 3D clouds.
 //!
 //! Every decoder is streaming, never panics on any input, returns named
 //! [`IngestError`]s and counts them per [`ErrorKind`] in [`DecoderStats`].
 // `!(x > 0.0)` deliberately rejects NaN as well, which `x <= 0.0` would let through.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod assembly;
+pub mod benewake;
 pub mod can;
+pub mod device;
 mod error;
+pub mod rplidar;
 mod scan;
+pub mod scip;
 pub mod serial;
 mod stats;
 

@@ -186,8 +186,16 @@ impl LaunchFile {
 
 /// The node programs `run` may name: `shroud node <kind>` (nodes/ checks that
 /// this list is exactly its subcommands).
-pub const NODE_KINDS: [&str; 8] = [
-    "scanner", "fit", "guard", "arm", "serial", "can", "blend", "smooth",
+pub const NODE_KINDS: [&str; 9] = [
+    "scanner",
+    "fit",
+    "guard",
+    "arm",
+    "serial",
+    "can",
+    "blend",
+    "smooth",
+    "device-sim",
 ];
 
 /// The options the launcher passes every child itself; `args` may not repeat

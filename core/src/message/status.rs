@@ -22,6 +22,10 @@ pub struct NodeStatusMessage {
     pub uptime_s: f64,
     pub counters: BTreeMap<String, u64>,
     pub gauges: BTreeMap<String, f64>,
+    /// Text facts about the node (a device's `device.state`, `device.model`,
+    /// `device.health`...); absent in messages that have none.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub labels: BTreeMap<String, String>,
 }
 
 impl NodeStatusMessage {
@@ -35,6 +39,7 @@ impl NodeStatusMessage {
             uptime_s: 0.0,
             counters: BTreeMap::new(),
             gauges: BTreeMap::new(),
+            labels: BTreeMap::new(),
         }
     }
 
@@ -69,6 +74,7 @@ mod tests {
         let mut msg = NodeStatusMessage::new("fit", "fit", 42);
         msg.counters.insert("received".into(), 10);
         msg.gauges.insert("rate_hz".into(), 29.5);
+        msg.labels.insert("device.state".into(), "streaming".into());
         let back = NodeStatusMessage::from_bytes(&msg.to_bytes().unwrap()).unwrap();
         assert_eq!(back, msg);
         assert_eq!(back.counter("received"), 10);

@@ -2,9 +2,15 @@
 //! place so that neither imports the other.
 
 mod blend;
+mod device;
+mod emulator;
+mod mount;
 mod smooth;
 mod surrogate;
 
 pub use blend::{points3, BlendShapeArgs};
+pub use device::{DeviceArgs, DeviceKind, RplidarScan, ScipScan};
+pub use emulator::EmulatorArgs;
+pub use mount::{CloudArgs, MountArgs, MountAxis};
 pub use smooth::{DomainKind, SmoothDomainArgs};
 pub use surrogate::SurrogateShapeArgs;

@@ -1,6 +1,7 @@
 //! `shroud bench`: reproduces the timing tables of paper 000 on the paper's own
 //! scene and prints them beside the paper's numbers (markdown, for the README).
 
+mod devices;
 mod latency;
 mod paper000;
 mod timing;
@@ -16,6 +17,9 @@ pub enum Suite {
     Surrogate,
     /// End-to-end latency through a real fit node process over zenoh.
     Latency,
+    /// Decode throughput of the real-device drivers (Hokuyo, RPLIDAR,
+    /// Benewake) on recorded emulator streams, and last byte to encoded cloud.
+    Devices,
 }
 
 #[derive(Debug, Args)]
@@ -40,5 +44,6 @@ pub fn run(args: BenchArgs) -> Result<()> {
     match args.suite {
         Suite::Surrogate => paper000::run(&args),
         Suite::Latency => latency::run(&args),
+        Suite::Devices => devices::run(&args),
     }
 }

@@ -1,8 +1,11 @@
 //! `shroud sensor-sim`: a simulated range sensor streaming a scene as the
 //! serial protocol or SLCAN to a pseudo-terminal (or an existing port), or
-//! writing a candump log.
+//! writing a candump log; or, with `--device`, an emulated real device
+//! (Hokuyo, RPLIDAR, Benewake) on a pseudo-terminal.
 
+use crate::args::EmulatorArgs;
 use crate::ingest::pty::Pty;
+use crate::ingest::run_emulator;
 use crate::ingest::sim::{CandumpWriter, ScanSink, SerialSensorWriter, SlcanWriter};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
@@ -80,10 +83,18 @@ pub struct SensorSimArgs {
     /// Interface name written in the candump log.
     #[arg(long, default_value = "can0")]
     pub interface: String,
-    /// Corrupt every n-th scan (serial, slcan), to exercise a reader's error
-    /// handling; 0 = never.
+    /// Corrupt every n-th scan (serial, slcan, and emulated devices), to
+    /// exercise a reader's error handling; 0 = never.
     #[arg(long, default_value_t = 0)]
     pub corrupt_every: u64,
+    /// Emulate this real device on a pseudo-terminal instead (urg-04lx,
+    /// utm-30lx, rplidar-a1, rplidar-a2, tfmini, tfmini-s, tfmini-plus,
+    /// tf-luna, tf02-pro): it answers the device's command set and measures
+    /// --world from --mount. --format, --scene and --rate do not apply.
+    #[arg(long)]
+    pub device: Option<String>,
+    #[command(flatten)]
+    pub emulator: EmulatorArgs,
 }
 
 impl Default for SensorSimArgs {
@@ -104,6 +115,8 @@ impl Default for SensorSimArgs {
             extended: false,
             interface: "can0".into(),
             corrupt_every: 0,
+            device: None,
+            emulator: EmulatorArgs::default(),
         }
     }
 }
@@ -121,11 +134,14 @@ fn parse_can_id(s: &str) -> Result<u32, String> {
 pub fn run_sensor_sim(args: &SensorSimArgs) -> Result<()> {
     let never = AtomicBool::new(false);
     run_sensor_sim_with(args, &never, &mut |target| {
-        println!(
-            "sensor-sim: {:?} sensor on {}",
-            args.format,
-            target.display()
-        );
+        match &args.device {
+            Some(model) => println!("sensor-sim: {model} on {}", target.display()),
+            None => println!(
+                "sensor-sim: {:?} sensor on {}",
+                args.format,
+                target.display()
+            ),
+        }
         let _ = std::io::stdout().flush();
     })
 }
@@ -137,6 +153,9 @@ pub fn run_sensor_sim_with(
     stop: &AtomicBool,
     ready: &mut dyn FnMut(&Path),
 ) -> Result<()> {
+    if let Some(model) = &args.device {
+        return run_device_emulator(args, model, stop, ready);
+    }
     let scene = Scene::by_name(&args.scene, args.points, args.seed)?;
     if !(args.rate.is_finite() && args.rate > 0.0) {
         bail!("--rate must be positive, got {}", args.rate);
@@ -217,6 +236,23 @@ pub fn run_sensor_sim_with(
         }
     };
     stream(&scene, args, stop, sink.as_mut(), true)
+}
+
+/// An emulated device on a pty until stopped or `--duration` passes.
+fn run_device_emulator(
+    args: &SensorSimArgs,
+    model: &str,
+    stop: &AtomicBool,
+    ready: &mut dyn FnMut(&Path),
+) -> Result<()> {
+    if args.port.is_some() {
+        bail!("--device emulates on a pseudo-terminal; --port is for --format serial|slcan");
+    }
+    let mut make = args.emulator.maker(model, args.corrupt_every, args.seed)?;
+    let stats = run_emulator(&mut make, &args.emulator.line(), stop, ready, &mut |_| {})
+        .context("emulated device")?;
+    tracing::info!("sensor-sim: {model} done: {stats:?}");
+    Ok(())
 }
 
 /// Generates and writes scans: paced at `--rate` with wall-clock stamps, or

@@ -52,8 +52,13 @@ impl Pty {
         &mut self.master
     }
 
-    /// Makes writes to the master fail with `WouldBlock` instead of blocking
-    /// when nobody drains the slave.
+    /// The master side, for ioctls.
+    pub fn master_ref(&self) -> &File {
+        &self.master
+    }
+
+    /// Makes reads and writes of the master return `WouldBlock` instead of
+    /// blocking (nothing to read, or nobody drains the slave).
     pub fn set_nonblocking(&self) -> io::Result<()> {
         use std::os::fd::AsRawFd;
         let fd = self.master.as_raw_fd();

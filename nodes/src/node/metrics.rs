@@ -9,6 +9,7 @@ use std::sync::{Mutex, MutexGuard};
 pub struct NodeMetrics {
     counters: Mutex<BTreeMap<&'static str, u64>>,
     gauges: Mutex<BTreeMap<&'static str, f64>>,
+    labels: Mutex<BTreeMap<String, String>>,
 }
 
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
@@ -32,6 +33,15 @@ impl NodeMetrics {
         }
     }
 
+    /// Sets a text fact (`device.state`, `device.model`...).
+    pub fn set_label(&self, label: String, value: String) {
+        lock(&self.labels).insert(label, value);
+    }
+
+    pub fn label(&self, label: &str) -> Option<String> {
+        lock(&self.labels).get(label).cloned()
+    }
+
     pub fn counter(&self, counter: &str) -> u64 {
         lock(&self.counters).get(counter).copied().unwrap_or(0)
     }
@@ -46,5 +56,6 @@ impl NodeMetrics {
             .iter()
             .map(|(k, v)| (k.to_string(), *v))
             .collect();
+        msg.labels = lock(&self.labels).clone();
     }
 }

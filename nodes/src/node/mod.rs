@@ -5,6 +5,8 @@ mod arm;
 mod arm_file;
 mod blend;
 mod can;
+mod device;
+mod device_sim;
 mod fit;
 mod guard;
 mod list;
@@ -18,6 +20,7 @@ mod smooth;
 pub use arm::ArmArgs;
 pub use blend::BlendNodeArgs;
 pub use can::CanNodeArgs;
+pub use device_sim::DeviceSimArgs;
 pub use fit::FitNodeArgs;
 pub use guard::GuardArgs;
 pub use list::NodeListArgs;
@@ -42,6 +45,8 @@ pub enum NodeCommand {
     Arm(ArmArgs),
     /// A serial range sensor (PROTOCOLS.md section 1) published as clouds.
     Serial(SerialNodeArgs),
+    /// An emulated real range sensor (Hokuyo, RPLIDAR, Benewake) on a pseudo-terminal.
+    DeviceSim(DeviceSimArgs),
     /// A CAN range sensor (SocketCAN, SLCAN or a candump log) published as clouds.
     Can(CanNodeArgs),
     /// Blend a child part onto a parent cloud, following drop/adjust commands (paper 001).
@@ -60,6 +65,7 @@ pub fn run(command: NodeCommand) -> Result<()> {
         NodeCommand::Arm(args) => arm::run(args),
         NodeCommand::Serial(args) => serial::run_serial(args),
         NodeCommand::Can(args) => can::run_can(args),
+        NodeCommand::DeviceSim(args) => device_sim::run_device_sim(args),
         NodeCommand::Blend(args) => blend::run(args),
         NodeCommand::Smooth(args) => smooth::run(args),
         NodeCommand::List(args) => list::run(args),

@@ -1,59 +1,99 @@
-//! What the sensor nodes do with each decoded scan: publish it as a cloud
-//! (with its time in shroud so far, and its device stamp checked for skew)
-//! and mirror the reader's counters (decode errors, disconnects, reopenings)
+//! What the sensor nodes do with each cloud they make: publish it (with its
+//! time in shroud so far, and its device stamp checked for skew), and mirror
+//! the protocol reader's counters (decode errors, disconnects, reopenings)
 //! into the node's status.
 
 use super::runtime::NodeContext;
 use crate::ingest::ReaderStats;
-use crate::transport::unix_ns;
+use crate::transport::{unix_ns, PayloadWriter};
 use anyhow::Result;
 use shroud_core::ingest::Scan;
 use shroud_core::message::{check_stamp_skew, max_skew_ns_from_secs, SensorPose, TopicKind};
+use std::sync::Arc;
+use std::time::Instant;
+use zenoh::Wait;
 
 /// `--max-skew` in seconds (`inf`: no check) as nanoseconds, or a named error.
 pub(super) fn max_skew_ns(seconds: f64) -> Result<u64> {
     max_skew_ns_from_secs(seconds)
         .ok_or_else(|| anyhow::anyhow!("--max-skew must be positive (inf: no check)"))
 }
-use std::sync::Arc;
-use std::time::Instant;
-use zenoh::Wait;
 
-/// The `on_scan` callback: publish each scan as a cloud and mirror the reader's
-/// counters into the node's status.
+/// Publishes clouds on `cloud/<stream>`, counting `published`,
+/// `publish_errors` and `clock_skew`.
+pub(super) struct CloudOut<'a> {
+    ctx: &'a Arc<NodeContext>,
+    publisher: zenoh::pubsub::Publisher<'static>,
+    key: String,
+    writer: PayloadWriter,
+    device: String,
+    source: String,
+    max_skew_ns: u64,
+    sequence: u64,
+}
+
+impl<'a> CloudOut<'a> {
+    pub fn new(
+        ctx: &'a Arc<NodeContext>,
+        stream: &str,
+        device: &str,
+        max_skew_ns: u64,
+    ) -> Result<Self> {
+        let publisher = ctx.publisher(TopicKind::Cloud, stream)?;
+        Ok(Self {
+            key: publisher.key_expr().to_string(),
+            publisher,
+            writer: ctx.payload_writer(16 << 20),
+            device: device.to_owned(),
+            source: format!("{}/{device}", ctx.name),
+            ctx,
+            max_skew_ns,
+            sequence: 0,
+        })
+    }
+
+    /// Publishes `scan` (points in the robot's frame), `pipeline_ns` after
+    /// its data reached this host.
+    pub fn publish(&mut self, scan: &Scan, since_receipt: impl Fn() -> u64) {
+        if let Err(skew) = check_stamp_skew(scan.stamp_ns, unix_ns(), self.max_skew_ns) {
+            self.ctx.metrics.add("clock_skew", 1);
+            tracing::warn!(device = %self.device, "device {skew}");
+        }
+        let published = scan
+            .to_view(self.sequence, &self.source, SensorPose::default())
+            .map(|view| view.with_pipeline_ns(since_receipt()))
+            .and_then(|view| self.writer.encode(&view))
+            .map_err(anyhow::Error::from)
+            .and_then(|b| {
+                self.publisher
+                    .put(b)
+                    .wait()
+                    .map_err(|e| anyhow::anyhow!("{e}"))
+            });
+        match published {
+            Ok(()) => self.ctx.metrics.add("published", 1),
+            Err(e) => {
+                self.ctx.metrics.add("publish_errors", 1);
+                tracing::warn!("publish {}: {e}", self.key);
+            }
+        }
+        self.sequence += 1;
+    }
+}
+
+/// The `on_scan` callback of the protocol readers: publish each scan as a
+/// cloud and mirror the reader's counters into the node's status.
 pub(super) fn cloud_publisher<'a>(
     ctx: &'a Arc<NodeContext>,
     stream: &str,
     device: &str,
     max_skew_ns: u64,
 ) -> Result<impl FnMut(Scan, &ReaderStats) + 'a> {
-    let device = device.to_owned();
-    let publisher = ctx.publisher(TopicKind::Cloud, stream)?;
-    let key = publisher.key_expr().to_string();
-    let writer = ctx.payload_writer(16 << 20);
-    let source = format!("{}/{device}", ctx.name);
-    let mut sequence = 0u64;
+    let mut out = CloudOut::new(ctx, stream, device, max_skew_ns)?;
     Ok(move |scan: Scan, stats: &ReaderStats| {
         // The scan's last byte has just been read: it enters shroud now.
         let received = Instant::now();
-        if let Err(skew) = check_stamp_skew(scan.stamp_ns, unix_ns(), max_skew_ns) {
-            ctx.metrics.add("clock_skew", 1);
-            tracing::warn!(%device, "device {skew}");
-        }
-        let published = scan
-            .to_view(sequence, &source, SensorPose::default())
-            .map(|view| view.with_pipeline_ns(received.elapsed().as_nanos() as u64))
-            .and_then(|view| writer.encode(&view))
-            .map_err(anyhow::Error::from)
-            .and_then(|b| publisher.put(b).wait().map_err(|e| anyhow::anyhow!("{e}")));
-        match published {
-            Ok(()) => ctx.metrics.add("published", 1),
-            Err(e) => {
-                ctx.metrics.add("publish_errors", 1);
-                tracing::warn!("publish {key}: {e}");
-            }
-        }
-        sequence += 1;
+        out.publish(&scan, || received.elapsed().as_nanos() as u64);
         ctx.metrics.set_counter(
             "dropped_malformed",
             stats.decoder.total_errors() + stats.transport.total_errors(),

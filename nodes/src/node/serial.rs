@@ -1,11 +1,16 @@
-//! The `serial` node: a real range sensor on a serial port. A blocking reader
-//! (from `crate::ingest`) decodes scans; each is published as a cloud.
+//! The `serial` node: a range sensor on a serial port published as clouds on
+//! `cloud/<stream>`. shroud's own protocol goes through the protocol reader
+//! (its scans are already 3D); a real device (Hokuyo, ...) through its driver
+//! and the scan-to-cloud assembly of its mount.
 
+use super::device::run_device_clouds;
 use super::runtime::{run_node, NodeCommon};
 use super::scan_publisher::{cloud_publisher, max_skew_ns};
-use crate::ingest::{run_serial_reader, SerialReaderConfig};
-use anyhow::Result;
+use crate::args::{CloudArgs, DeviceArgs};
+use crate::ingest::{run_serial_reader, DevicePortConfig, SerialReaderConfig};
+use anyhow::{bail, Result};
 use clap::Args;
+use shroud_core::ingest::assembly::{MountPose, MovingMount};
 
 #[derive(Debug, Clone, Args)]
 pub struct SerialNodeArgs {
@@ -14,8 +19,10 @@ pub struct SerialNodeArgs {
     /// Serial device (`/dev/ttyUSB0`, `/dev/serial/by-id/...`, a pty).
     #[arg(long)]
     pub port: String,
-    #[arg(long, default_value_t = 921_600)]
-    pub baud: u32,
+    #[command(flatten)]
+    pub device: DeviceArgs,
+    #[command(flatten)]
+    pub clouds: CloudArgs,
     /// Stream name: clouds go to `shroud/<ns>/cloud/<stream>`.
     #[arg(long, default_value = "serial")]
     pub stream: String,
@@ -26,13 +33,41 @@ pub struct SerialNodeArgs {
 }
 
 pub fn run_serial(args: SerialNodeArgs) -> Result<()> {
-    let config = SerialReaderConfig::new(&args.port, args.baud);
     let max_skew_ns = max_skew_ns(args.max_skew)?;
+    let baud = args.device.port_baud();
+    // Every setting is checked before the node starts.
+    let driver = args.device.driver()?;
+    let assembly = args.clouds.assembly()?;
     let common = args.common.clone();
-    run_node(&common, "serial", move |ctx| {
-        let mut publish = cloud_publisher(&ctx, &args.stream, &args.port, max_skew_ns)?;
-        let stats = run_serial_reader(&config, &mut publish, ctx.stop_flag())?;
-        tracing::info!("serial reader stopped: {stats}");
-        Ok(())
-    })
+    match driver {
+        None => {
+            let unmoved = MovingMount::fixed(MountPose::default());
+            if assembly.mount != unmoved || args.clouds.cloud.is_some() {
+                bail!(
+                    "--device shroud sends 3D scans in its own frame: --mount, --sensor-offset, \
+                     --sweep, --mount-joint and --cloud apply to range devices only"
+                );
+            }
+            let config = SerialReaderConfig::new(&args.port, baud);
+            run_node(&common, "serial", move |ctx| {
+                let mut publish = cloud_publisher(&ctx, &args.stream, &args.port, max_skew_ns)?;
+                let stats = run_serial_reader(&config, &mut publish, ctx.stop_flag())?;
+                tracing::info!("serial reader stopped: {stats}");
+                Ok(())
+            })
+        }
+        Some(mut driver) => {
+            let port = DevicePortConfig::new(&args.port, baud);
+            run_node(&common, "serial", move |ctx| {
+                run_device_clouds(
+                    &ctx,
+                    driver.as_mut(),
+                    &port,
+                    &args.clouds,
+                    &args.stream,
+                    max_skew_ns,
+                )
+            })
+        }
+    }
 }

@@ -1,0 +1,53 @@
+//! Hokuyo SCIP 2.0 laser range finders (URG-04LX, and other SCIP 2.0 sensors
+//! over USB CDC-ACM or RS-232), sans-I/O: codec pieces (character encoding,
+//! line sums, commands, line splitting, reply assembly, parameter replies,
+//! scan data), the sensor clock, and [`ScipDriver`], the state machine that
+//! probes, configures and streams.
+//!
+//! Sources: Hokuyo "Communication Protocol Specification for SCIP2.0"
+//! (C-42-03320B, cited as "spec §n"), ros-drivers/urg_c `current/src/*.c` at
+//! bbe007f5, ros-drivers/urg_node `src/urg_c_wrapper.cpp` at 369ee4d,
+//! seqsense/urg_stamped `src/urg_stamped.cpp` at a92e831; summarised in
+//! shared/research/sensors.md §1.1.
+//!
+//! Conventions (REP-103): a ray's angle is `(step - AFRT) * 2π / ARES`
+//! radians, counter-clockwise positive from the sensor's front, since the
+//! beam turns counter-clockwise seen from above (spec §5). With cluster `c`,
+//! ray `i` carries the angle and time of step `start + i*c`, the first step
+//! of its cluster. Ranges below `DMIN` (error codes) or above `DMAX` are NaN
+//! rays, kept. A ray's `offset_ns` is its step distance from the first ray
+//! times 60e9 / (`SCAN` * `ARES`) ns. A scan's `stamp_ns` is the first ray's
+//! time: the sensor timestamp mapped through the `TM1` clock offset, plus the
+//! time the beam takes from the rear centre (the instant the timestamp is
+//! assumed to mark, see [`first_ray_delay_ns`]) to the first ray.
+
+mod clock;
+mod command;
+mod config;
+mod driver;
+mod encoding;
+mod handshake;
+mod line;
+mod params;
+mod rays;
+mod reply;
+mod scan_data;
+mod status;
+mod streaming;
+mod sum;
+
+#[cfg(test)]
+mod tests;
+
+pub use clock::{ClockSync, DeviceClock, ScanStamper, ScanTiming, MAX_STAMP_AGE_NS, WRAP_MS};
+pub use command::{Command, CommandError, ScanKind, ScanRequest, Tag, TimeMode};
+pub use config::{Link, ScanCommand, ScipConfig};
+pub use driver::ScipDriver;
+pub use encoding::{decode, encode};
+pub use line::{LineEvent, LineSplitter, MAX_LINE_LEN};
+pub use params::{health, parse_pairs, ParamError, ScipGeometry};
+pub use rays::{first_ray_delay_ns, ScanPlan};
+pub use reply::{Assembled, Reply, ReplyAssembler, MAX_REPLY_LINES};
+pub use scan_data::{decode_scan, decode_timestamp, ScanData, ScanDataError};
+pub use status::{Status, StatusClass, StatusLineError};
+pub use sum::{line_sum, strip_parameter_sum, strip_sum};

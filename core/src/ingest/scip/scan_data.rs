@@ -1,0 +1,128 @@
+//! Decodes the data part of a scan reply (spec C-42-03320B §8.1, §8.2): the
+//! 4-character timestamp line, then data lines of at most 64 characters, each
+//! with its own sum. Values straddle line boundaries, so the lines are
+//! stripped of their sums and concatenated before they are cut into 2- or
+//! 3-character groups (urg_c `receive_length_data()` keeps a carry buffer for
+//! the same reason). `ME`/`GE` send each step as range then intensity.
+
+use thiserror::Error;
+
+use super::command::ScanRequest;
+use super::encoding::decode;
+use super::sum::strip_sum;
+
+/// The most characters in one data line before its sum (spec §8.1).
+pub const MAX_DATA_LINE: usize = 64;
+
+/// Why a scan's data was rejected; the whole scan is dropped.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum ScanDataError {
+    #[error("a data line has a wrong sum")]
+    BadChecksum,
+    #[error("the timestamp line is not 4 characters and a sum")]
+    BadTimestamp,
+    #[error("a data line is longer than 64 characters")]
+    LongLine,
+    #[error("a character is outside the SCIP encoding")]
+    BadCharacter,
+    #[error("{got} characters of data, expected {expected}")]
+    WrongLength { expected: usize, got: usize },
+}
+
+impl ScanDataError {
+    /// The error-counter name: a short scan is `incomplete_scan`, a wrong sum
+    /// `bad_checksum`, anything else `malformed_reply`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Self::BadChecksum => "bad_checksum",
+            Self::WrongLength { expected, got } if got < expected => "incomplete_scan",
+            _ => "malformed_reply",
+        }
+    }
+}
+
+/// One decoded scan: the sensor's timestamp and one value per cluster.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ScanData {
+    /// The sensor's 24-bit millisecond timer when it took the scan.
+    pub timestamp_ms: u32,
+    /// Ranges in mm (or error codes below `DMIN`), in step order.
+    pub ranges: Vec<u32>,
+    /// Intensities, one per range, for `ME`/`GE`.
+    pub intensities: Option<Vec<u32>>,
+}
+
+/// Decodes `lines` (the reply's lines after its status line: the timestamp
+/// line, then data lines) for `request`.
+pub fn decode_scan(lines: &[Vec<u8>], request: &ScanRequest) -> Result<ScanData, ScanDataError> {
+    let (stamp_line, data_lines) = lines.split_first().ok_or(ScanDataError::BadTimestamp)?;
+    let timestamp_ms = decode_timestamp(stamp_line)?;
+    let text = join_data_lines(data_lines)?;
+    let range_width = request.kind.range_width();
+    let group = if request.kind.has_intensity() {
+        2 * range_width
+    } else {
+        range_width
+    };
+    let expected = request.value_count().saturating_mul(group);
+    if text.len() != expected {
+        return Err(ScanDataError::WrongLength {
+            expected,
+            got: text.len(),
+        });
+    }
+    let values = text
+        .chunks_exact(range_width)
+        .map(decode)
+        .collect::<Option<Vec<u32>>>()
+        .ok_or(ScanDataError::BadCharacter)?;
+    Ok(split_values(
+        timestamp_ms,
+        values,
+        request.kind.has_intensity(),
+    ))
+}
+
+/// Decodes a timestamp line: 4 characters and their sum (also the `TM1`
+/// reply's time line, spec §8.6).
+pub fn decode_timestamp(line: &[u8]) -> Result<u32, ScanDataError> {
+    let body = strip_sum(line).ok_or(ScanDataError::BadChecksum)?;
+    if body.len() != 4 {
+        return Err(ScanDataError::BadTimestamp);
+    }
+    decode(body).ok_or(ScanDataError::BadCharacter)
+}
+
+fn join_data_lines(lines: &[Vec<u8>]) -> Result<Vec<u8>, ScanDataError> {
+    let mut text = Vec::with_capacity(lines.len().saturating_mul(MAX_DATA_LINE));
+    for line in lines {
+        let body = strip_sum(line).ok_or(ScanDataError::BadChecksum)?;
+        if body.len() > MAX_DATA_LINE {
+            return Err(ScanDataError::LongLine);
+        }
+        text.extend_from_slice(body);
+    }
+    Ok(text)
+}
+
+fn split_values(timestamp_ms: u32, values: Vec<u32>, with_intensity: bool) -> ScanData {
+    if !with_intensity {
+        return ScanData {
+            timestamp_ms,
+            ranges: values,
+            intensities: None,
+        };
+    }
+    let (ranges, intensities) = values
+        .chunks_exact(2)
+        .filter_map(|pair| match pair {
+            [range, intensity] => Some((*range, *intensity)),
+            _ => None,
+        })
+        .unzip();
+    ScanData {
+        timestamp_ms,
+        ranges,
+        intensities: Some(intensities),
+    }
+}

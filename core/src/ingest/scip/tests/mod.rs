@@ -1,0 +1,10 @@
+//! Tests of the SCIP 2.0 codec pieces, clock and driver: golden vectors from
+//! the spec, scripted handshake transcripts, state-machine tests and property
+//! tests.
+
+mod clock;
+mod codec;
+mod props;
+mod stream;
+mod support;
+mod transcripts;

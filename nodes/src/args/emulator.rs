@@ -1,0 +1,169 @@
+//! Options of an emulated serial range sensor (`shroud sensor-sim --device`
+//! and the `device-sim` node): the model, the world it measures, its mount,
+//! and the faults it shows.
+
+use super::mount::MountArgs;
+use crate::ingest::EmulatorLine;
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use shroud_core::format::parse_triangle_mesh;
+use shroud_sim::device::{EmulatorOptions, Faults, MeshRays, SerialDeviceEmulator, MODELS};
+use shroud_sim::{Bvh, TableTop, Terrain, DEFAULT_CYLINDER_SEGMENTS, DEFAULT_TERRAIN_CELLS};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+#[derive(Debug, Clone, Args)]
+pub struct EmulatorArgs {
+    /// What the emulated device measures: table-top, terrain, or a mesh file
+    /// (OBJ, PLY or STL) in metres, robot frame.
+    #[arg(long, default_value = "table-top")]
+    pub world: String,
+    #[command(flatten)]
+    pub mount: MountArgs,
+    /// Keep a symlink at this path pointing at the device's pty (a stable
+    /// name across unplugs, like /dev/serial/by-id/...).
+    #[arg(long)]
+    pub link: Option<PathBuf>,
+    /// Send a burst of random bytes before every n-th scan; 0 = never.
+    #[arg(long, default_value_t = 0)]
+    pub garbage_every: u64,
+    /// Seconds after power-up until the device stops sending for --stall-for.
+    #[arg(long)]
+    pub stall_after: Option<f64>,
+    #[arg(long, default_value_t = 2.0)]
+    pub stall_for: f64,
+    /// Seconds after start until the device is unplugged for --unplug-for
+    /// (it comes back powered up afresh, behind the same --link).
+    #[arg(long)]
+    pub unplug_after: Option<f64>,
+    #[arg(long, default_value_t = 2.0)]
+    pub unplug_for: f64,
+    /// Stop after this many seconds (default: run until interrupted).
+    #[arg(long)]
+    pub duration: Option<f64>,
+    /// Emulate an RS-232 link whose UART starts at this baud rate (Hokuyo;
+    /// default: USB, where the host's rate does not matter).
+    #[arg(long)]
+    pub rs232: Option<u32>,
+    /// The Hokuyo starts in SCIP 1.1 (as older URG-04LX firmware does).
+    #[arg(long)]
+    pub scip1: bool,
+    /// The device's millisecond clock at power-up (Hokuyo: test the 24-bit wrap).
+    #[arg(long, default_value_t = 0)]
+    pub clock_start_ms: u32,
+    /// The device enters its abnormal state after this many scans (Hokuyo:
+    /// it answers `0L` until rebooted by two RB commands).
+    #[arg(long)]
+    pub abnormal_after: Option<u64>,
+}
+
+impl Default for EmulatorArgs {
+    fn default() -> Self {
+        Self {
+            world: "table-top".into(),
+            mount: MountArgs::default(),
+            link: None,
+            garbage_every: 0,
+            stall_after: None,
+            stall_for: 2.0,
+            unplug_after: None,
+            unplug_for: 2.0,
+            duration: None,
+            rs232: None,
+            scip1: false,
+            clock_start_ms: 0,
+            abnormal_after: None,
+        }
+    }
+}
+
+impl EmulatorArgs {
+    /// Checks the options and loads the world, then returns a maker of fresh
+    /// emulators of `model` (one per power-up).
+    pub fn maker(
+        &self,
+        model: &str,
+        corrupt_every: u64,
+        seed: u64,
+    ) -> Result<impl FnMut() -> Result<Box<dyn SerialDeviceEmulator>>> {
+        if !MODELS.contains(&model) {
+            bail!(
+                "unknown device model {model:?} (one of {})",
+                MODELS.join(", ")
+            );
+        }
+        for (name, value) in [
+            ("--stall-for", self.stall_for),
+            ("--unplug-for", self.unplug_for),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                bail!("{name} must be a non-negative number of seconds, got {value}");
+            }
+        }
+        for (name, value) in [
+            ("--stall-after", self.stall_after),
+            ("--unplug-after", self.unplug_after),
+            ("--duration", self.duration),
+        ] {
+            if value.is_some_and(|v| !(v.is_finite() && v >= 0.0)) {
+                bail!("{name} must be a non-negative number of seconds");
+            }
+        }
+        let bvh = Arc::new(self.world_bvh()?);
+        let mount = self.mount.mount()?;
+        let start_unix_ns = crate::transport::unix_ns();
+        // Validate once, so that a bad mount is an error before the pty opens.
+        MeshRays::new(bvh.clone(), mount.clone(), start_unix_ns).map_err(anyhow::Error::msg)?;
+        let options = EmulatorOptions {
+            faults: Faults {
+                corrupt_every,
+                garbage_every: self.garbage_every,
+                seed,
+            },
+            seed,
+            rs232_baud: self.rs232,
+            starts_in_scip1: self.scip1,
+            clock_start_ms: self.clock_start_ms,
+            abnormal_after_scans: self.abnormal_after,
+        };
+        let model = model.to_owned();
+        let mut power_ups = 0u64;
+        Ok(move || {
+            power_ups += 1;
+            // Each power-up measures the same world on the same wall clock.
+            let rays = MeshRays::new(bvh.clone(), mount.clone(), crate::transport::unix_ns())
+                .map_err(anyhow::Error::msg)?;
+            let options = EmulatorOptions {
+                seed: options.seed.wrapping_add(power_ups),
+                ..options.clone()
+            };
+            shroud_sim::device::emulator(&model, Box::new(rays), &options)
+                .map_err(anyhow::Error::msg)
+        })
+    }
+
+    /// The line's schedule of faults and its link.
+    pub fn line(&self) -> EmulatorLine {
+        EmulatorLine {
+            link: self.link.clone(),
+            stall_after: self.stall_after,
+            stall_for: self.stall_for,
+            unplug_after: self.unplug_after,
+            unplug_for: self.unplug_for,
+            duration: self.duration,
+        }
+    }
+
+    fn world_bvh(&self) -> Result<Bvh> {
+        let mesh = match self.world.as_str() {
+            "table-top" => TableTop::default().mesh(DEFAULT_CYLINDER_SEGMENTS)?,
+            "terrain" => Terrain::default().mesh(DEFAULT_TERRAIN_CELLS)?,
+            path => {
+                let bytes = std::fs::read(path)
+                    .with_context(|| format!("cannot read the world mesh {path}"))?;
+                parse_triangle_mesh(&bytes).with_context(|| format!("world mesh {path}"))?
+            }
+        };
+        Ok(Bvh::build(&mesh)?)
+    }
+}

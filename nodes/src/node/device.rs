@@ -1,0 +1,216 @@
+//! The `serial` node for real range sensors (Hokuyo, RPLIDAR, Benewake): a
+//! device driver on its port (one thread), and the assembly of its scans into
+//! clouds in the robot's frame, published on `cloud/<stream>` (another). The
+//! mount's angle, when it comes from a joint, arrives on `joints/<name>`.
+
+use super::runtime::NodeContext;
+use super::scan_publisher::CloudOut;
+use crate::args::CloudArgs;
+use crate::ingest::{host_now, run_device, DevicePortConfig, PortStats};
+use anyhow::Result;
+use shroud_core::ingest::assembly::{AssembledCloud, CloudAssembler, MountMotion};
+use shroud_core::ingest::device::{DeviceDriver, DeviceStats, DriverOutput, RangeScan};
+use shroud_core::message::{JointStateMessage, TopicKind};
+use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TrySendError};
+use std::sync::Arc;
+use std::time::Duration;
+use zenoh::Wait;
+
+/// Scans and joint samples waiting for the assembler.
+const ASSEMBLY_QUEUE: usize = 256;
+
+enum Input {
+    Scan(RangeScan),
+    Joint { unix_ns: u64, angle: f64 },
+}
+
+/// Runs `driver` on `port` and publishes its clouds until the node stops.
+pub(super) fn run_device_clouds(
+    ctx: &Arc<NodeContext>,
+    driver: &mut dyn DeviceDriver,
+    port: &DevicePortConfig,
+    clouds: &CloudArgs,
+    stream: &str,
+    max_skew_ns: u64,
+) -> Result<()> {
+    let config = clouds.assembly()?;
+    let joint = match &config.mount.motion {
+        MountMotion::Joint { name } => Some(name.clone()),
+        _ => None,
+    };
+    let assembler = CloudAssembler::new(config)?;
+    let mut out = CloudOut::new(ctx, stream, driver.kind(), max_skew_ns)?;
+    let (tx, rx) = sync_channel(ASSEMBLY_QUEUE);
+    let _joints = match joint {
+        Some(name) => Some(subscribe_mount_joint(
+            ctx,
+            &clouds.joints,
+            name,
+            tx.clone(),
+        )?),
+        None => None,
+    };
+    ctx.metrics
+        .set_label("device.kind".into(), driver.kind().into());
+    std::thread::scope(|scope| -> Result<()> {
+        scope.spawn(|| assemble(ctx, rx, assembler, &mut out));
+        let mut on_output = |output, device: &DeviceStats, port: &PortStats| {
+            report(ctx, output, &tx);
+            mirror_counters(ctx, device, port);
+        };
+        let stats = run_device(port, driver, &mut on_output, ctx.stop_flag());
+        drop(tx);
+        let stats = stats?;
+        mirror_counters(ctx, driver.stats(), &stats);
+        tracing::info!(
+            "{} device stopped: {}; port: {stats:?}",
+            driver.kind(),
+            driver.stats()
+        );
+        Ok(())
+    })
+}
+
+/// What the driver reported: scans to the assembler, the rest to the status.
+fn report(ctx: &NodeContext, output: DriverOutput, tx: &SyncSender<Input>) {
+    match output {
+        DriverOutput::Scan(scan) => offer(ctx, tx, Input::Scan(scan)),
+        DriverOutput::State(state) => {
+            tracing::info!("device state: {state:?}");
+            ctx.metrics
+                .set_label("device.state".into(), state.name().into());
+        }
+        DriverOutput::Identity(pairs) => {
+            let text: Vec<String> = pairs.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            tracing::info!("device identity: {}", text.join(", "));
+            for (key, value) in pairs {
+                ctx.metrics.set_label(format!("device.{key}"), value);
+            }
+        }
+        DriverOutput::Health { ok, detail } => {
+            if !ok {
+                ctx.metrics.add("device_unhealthy", 1);
+                tracing::warn!("device health: {detail}");
+            }
+            let text = if ok {
+                format!("ok: {detail}")
+            } else {
+                format!("fault: {detail}")
+            };
+            ctx.metrics.set_label("device.health".into(), text);
+        }
+        // The port carries these out itself.
+        DriverOutput::Write(_)
+        | DriverOutput::SetBaud(_)
+        | DriverOutput::SetDtr(_)
+        | DriverOutput::FlushInput
+        | DriverOutput::Reconnect(_) => {}
+    }
+}
+
+/// Hands work to the assembler; a full queue drops it, counted.
+fn offer(ctx: &NodeContext, tx: &SyncSender<Input>, input: Input) {
+    match tx.try_send(input) {
+        Ok(()) => {}
+        Err(TrySendError::Full(_)) => {
+            ctx.metrics.add("dropped_backlog", 1);
+            tracing::debug!("assembler busy: dropped a scan or joint sample");
+        }
+        Err(TrySendError::Disconnected(_)) => {}
+    }
+}
+
+fn mirror_counters(ctx: &NodeContext, device: &DeviceStats, port: &PortStats) {
+    let m = &ctx.metrics;
+    m.set_counter("scans", device.scans);
+    m.set_counter("bytes_read", device.bytes);
+    m.set_counter("commands", device.commands);
+    m.set_counter("handshakes", device.handshakes);
+    m.set_counter("dropped_malformed", device.total_errors());
+    for (kind, n) in device.error_counts().chain(device.invalid_reading_counts()) {
+        m.set_counter(kind, n);
+    }
+    m.set_counter("opens", port.opens);
+    m.set_counter("open_failures", port.open_failures);
+    m.set_counter("disconnects", port.disconnects);
+    m.set_counter("reconnects", port.reconnects);
+    m.set_counter("line_setting_failures", port.line_setting_failures);
+}
+
+/// The assembler's thread: scans and joint samples in, clouds out.
+fn assemble(
+    ctx: &NodeContext,
+    rx: Receiver<Input>,
+    mut assembler: CloudAssembler,
+    out: &mut CloudOut<'_>,
+) {
+    let mut clouds = Vec::new();
+    loop {
+        match rx.recv_timeout(Duration::from_millis(50)) {
+            Ok(Input::Scan(scan)) => assembler.push_scan(scan, &mut clouds),
+            Ok(Input::Joint { unix_ns, angle }) => {
+                assembler.push_joint(unix_ns, angle, &mut clouds)
+            }
+            Err(RecvTimeoutError::Timeout) => {}
+            Err(RecvTimeoutError::Disconnected) => break,
+        }
+        assembler.expire(host_now());
+        for cloud in clouds.drain(..) {
+            publish(ctx, out, &cloud);
+        }
+        let s = assembler.stats();
+        ctx.metrics.set_counter("clouds", s.clouds);
+        ctx.metrics.set_counter("invalid_rays", s.invalid_rays);
+        ctx.metrics
+            .set_counter("mount_angle_missing", s.mount_angle_missing);
+        ctx.metrics
+            .set_counter("joint_samples_refused", s.joint_samples_refused);
+    }
+}
+
+/// Publishes a cloud, aged from the arrival of its first scan's last byte.
+fn publish(ctx: &NodeContext, out: &mut CloudOut<'_>, cloud: &AssembledCloud) {
+    let first = cloud.first_received.monotonic_ns;
+    out.publish(&cloud.cloud, || {
+        host_now().monotonic_ns.saturating_sub(first)
+    });
+    let since_last = host_now().since(cloud.last_received);
+    ctx.metrics
+        .set("last_byte_to_publish_ms", since_last as f64 * 1e-6);
+    ctx.metrics
+        .set("cloud_points", cloud.cloud.points.len() as f64);
+}
+
+/// Subscribes to the joint states carrying the mount's angle.
+fn subscribe_mount_joint(
+    ctx: &Arc<NodeContext>,
+    topic: &str,
+    joint: String,
+    tx: SyncSender<Input>,
+) -> Result<zenoh::pubsub::Subscriber<()>> {
+    let key = ctx.key(TopicKind::Joints, topic)?;
+    let node = ctx.clone();
+    let subscriber = ctx
+        .session
+        .declare_subscriber(key.clone())
+        .callback(move |sample| {
+            let bytes = sample.payload().to_bytes();
+            match JointStateMessage::from_bytes(&bytes) {
+                Ok(msg) => match msg.names.iter().position(|n| *n == joint) {
+                    Some(i) => offer(
+                        &node,
+                        &tx,
+                        Input::Joint {
+                            unix_ns: msg.stamp_ns,
+                            angle: msg.positions[i],
+                        },
+                    ),
+                    None => node.drop_malformed(&key, &format!("no joint named {joint:?}")),
+                },
+                Err(e) => node.drop_malformed(&key, &e),
+            }
+        })
+        .wait()
+        .map_err(|e| anyhow::anyhow!("subscribe {topic}: {e}"))?;
+    Ok(subscriber)
+}

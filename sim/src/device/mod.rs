@@ -1,0 +1,20 @@
+//! Byte-exact emulators of real serial range sensors (Hokuyo SCIP 2.0 lidars,
+//! Slamtec RPLIDARs, Benewake TFmini rangefinders). An emulator answers the
+//! device's real command set with its real replies and streams scans it
+//! measures by casting rays into a [`RaySource`]. Pure: the caller carries the
+//! bytes (a pseudo-terminal in `shroud sensor-sim`) and passes the time.
+//!
+//! Written from the devices' manuals, independently of the drivers in
+//! `shroud_core::ingest`: the golden vectors in both test suites are the
+//! arbiter, so a misreading in one is not copied into the other.
+
+pub mod benewake;
+mod catalog;
+mod emulator;
+pub mod hokuyo;
+pub mod rplidar;
+mod world;
+
+pub use catalog::{emulator, EmulatorOptions, MODELS};
+pub use emulator::{Faults, RayReturn, RaySource, SerialDeviceEmulator};
+pub use world::MeshRays;

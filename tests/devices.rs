@@ -1,0 +1,487 @@
+//! Real serial range sensors, end to end with real processes: an emulated
+//! device (`shroud sensor-sim --device ...`) on a real pseudo-terminal, the
+//! `serial` node reading it with the device's driver and assembling clouds
+//! from a (tilting) mount, and the test listening over a real zenoh session.
+//! Handshakes, streams, unplug and replug, a device left streaming by a
+//! crashed driver, RS-232 baud probing, and injected faults.
+
+mod common;
+
+use common::{hub_on_free_port, inbox, wiring, Inbox, Proc};
+use shroud_core::message::{CloudMessage, NodeStatusMessage, SurrogateMessage};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+const LONG: Duration = Duration::from_secs(60);
+
+/// A mount 2.5 m above the table top with the scan plane vertical, nodding
+/// ±35° about y every 2 s (one sweep a second).
+const TILTING: [&str; 8] = [
+    "--mount",
+    "0,0,2.5,0,0,0",
+    "--mount-axis",
+    "y",
+    "--sensor-offset",
+    "0,0,0,0,90,0",
+    "--sweep",
+    "triangle:35:2",
+];
+
+struct Rig {
+    endpoint: String,
+    namespace: String,
+    hub: zenoh::Session,
+    dir: tempfile::TempDir,
+}
+
+impl Rig {
+    fn new(namespace: &str) -> Rig {
+        let (endpoint, hub) = hub_on_free_port();
+        Rig {
+            endpoint,
+            namespace: namespace.to_owned(),
+            hub,
+            dir: tempfile::tempdir().expect("a temp dir"),
+        }
+    }
+
+    fn link(&self) -> PathBuf {
+        self.dir.path().join("device")
+    }
+
+    /// Starts the emulator of `model` behind the rig's link; waits until it is up.
+    fn emulator(&self, model: &str, extra: &[&str]) -> Proc {
+        let link = path(&self.link());
+        let mut args = vec!["sensor-sim", "--device", model, "--link", &link];
+        args.extend_from_slice(extra);
+        let emulator = Proc::start(&args);
+        emulator.expect_line(&format!("sensor-sim: {model} on"), LONG);
+        emulator
+    }
+
+    /// Starts `shroud node <args...>` on the rig's hub.
+    fn node(&self, args: &[&str]) -> Proc {
+        let mut all = vec!["node"];
+        all.extend_from_slice(args);
+        all.extend(wiring(&self.endpoint, &self.namespace));
+        Proc::start(&all)
+    }
+
+    /// The serial node for `device` on the rig's link, publishing `cloud/dev`.
+    fn serial(&self, device: &str, extra: &[&str]) -> Proc {
+        let link = path(&self.link());
+        let mut args = vec![
+            "serial",
+            "--name",
+            "dev",
+            "--device",
+            device,
+            "--port",
+            &link,
+            "--stream",
+            "dev",
+            "--status-period",
+            "0.2",
+        ];
+        args.extend_from_slice(extra);
+        self.node(&args)
+    }
+
+    fn inbox(&self, kind: &str, name: &str) -> Inbox {
+        inbox(
+            &self.hub,
+            format!("shroud/{}/{kind}/{name}", self.namespace),
+        )
+    }
+}
+
+fn path(p: &Path) -> String {
+    p.to_str().expect("a UTF-8 temp path").to_owned()
+}
+
+/// The next `n` clouds on `inbox`; panics (with the node's output) if they
+/// do not come in time.
+fn clouds(inbox: &Inbox, n: usize, node: &Proc) -> Vec<CloudMessage> {
+    let deadline = Instant::now() + LONG;
+    let mut got = Vec::new();
+    while got.len() < n {
+        let left = deadline.saturating_duration_since(Instant::now());
+        match inbox.recv_timeout(left.min(Duration::from_millis(200))) {
+            Ok(Some(sample)) => {
+                let cloud = CloudMessage::from_bytes(&sample.payload().to_bytes());
+                got.push(cloud.expect("a valid cloud"));
+            }
+            _ if left.is_zero() => panic!(
+                "{} of {n} clouds in {LONG:?}; node output:\n{}",
+                got.len(),
+                node.output()
+            ),
+            _ => {}
+        }
+    }
+    got
+}
+
+/// The first status of the node that satisfies `done`.
+fn status_until(
+    inbox: &Inbox,
+    node: &Proc,
+    what: &str,
+    done: impl Fn(&NodeStatusMessage) -> bool,
+) -> NodeStatusMessage {
+    let deadline = Instant::now() + LONG;
+    let mut last = None;
+    while Instant::now() < deadline {
+        if let Ok(Some(sample)) = inbox.recv_timeout(Duration::from_millis(200)) {
+            let status = NodeStatusMessage::from_bytes(&sample.payload().to_bytes());
+            let status = status.expect("a valid status");
+            if done(&status) {
+                return status;
+            }
+            last = Some(status);
+        }
+    }
+    panic!(
+        "no status with {what} in {LONG:?}; last {last:?}; node output:\n{}",
+        node.output()
+    );
+}
+
+fn label<'a>(status: &'a NodeStatusMessage, key: &str) -> &'a str {
+    status.labels.get(key).map_or("", String::as_str)
+}
+
+#[test]
+fn devices_a_tilting_urg_becomes_clouds_and_certified_surrogates() {
+    let rig = Rig::new("dev-urg");
+    let mut emulator_args = TILTING.to_vec();
+    emulator_args.extend(["--corrupt-every", "7", "--garbage-every", "5"]);
+    let _emulator = rig.emulator("urg-04lx", &emulator_args);
+    let cloud_inbox = rig.inbox("cloud", "dev");
+    let status_inbox = rig.inbox("status", "dev");
+    let surrogate_inbox = rig.inbox("surrogate", "dev");
+    let node = rig.serial("hokuyo", &TILTING);
+    let _fit = rig.node(&[
+        "fit", "--input", "dev", "--grid", "12x12", "--side", "upper", "--dir", "0,0,-1",
+    ]);
+    // Sweeps of one second: each cloud spans ~10 scans of 682 rays.
+    let got = clouds(&cloud_inbox, 4, &node);
+    // The first sweep began before the node did: skip it.
+    for cloud in &got[1..] {
+        let points = cloud.point_array().unwrap();
+        // Rays beyond ~63° from straight down leave the 5.6 m range: about
+        // 40 % of 682 rays of each of the ~10 scans hit the table.
+        assert!(
+            points.len() > 1000,
+            "a sweep holds ~10 scans: {}",
+            points.len()
+        );
+        // The table top (z = 0) and its objects (up to 1 m) under a sensor at 2.5 m.
+        let below = points.iter().filter(|p| p[2] > -0.05 && p[2] < 1.3).count();
+        assert!(
+            below * 10 > points.len() * 9,
+            "points lie on the table and its objects"
+        );
+        // Nodding ±35° from 2.5 m sweeps x over about ±1.75 m.
+        let max_x = points.iter().map(|p| p[0].abs()).fold(0.0, f32::max);
+        assert!(max_x > 1.2 && max_x < 2.2, "sweep reach {max_x}");
+        assert!(cloud.pipeline_ns > 0);
+    }
+    let status = status_until(&status_inbox, &node, "streaming and counted faults", |s| {
+        label(s, "device.state") == "streaming"
+            && s.counter("bad_checksum") > 0
+            && s.counter("clouds") >= 3
+    });
+    assert_eq!(label(&status, "device.kind"), "hokuyo");
+    assert!(
+        label(&status, "device.MODL").contains("URG-04LX"),
+        "{status:?}"
+    );
+    assert!(
+        label(&status, "device.health").starts_with("ok"),
+        "{status:?}"
+    );
+    // Certified surrogates of the assembled clouds downstream: each certifies
+    // every point of the cloud it names.
+    let mut seen = got;
+    let deadline = Instant::now() + LONG;
+    loop {
+        while let Ok(Some(sample)) = cloud_inbox.try_recv() {
+            seen.push(CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap());
+        }
+        if let Ok(Some(sample)) = surrogate_inbox.recv_timeout(Duration::from_millis(200)) {
+            let (msg, _) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+            if let Some(cloud) = seen.iter().find(|c| c.sequence == msg.source_sequence) {
+                let points = cloud.point_array().unwrap().len() as u64;
+                for surface in &msg.surfaces {
+                    assert_eq!(surface.certificate.violations, 0);
+                    assert_eq!(surface.certificate.points_checked, points);
+                }
+                break;
+            }
+        }
+        assert!(
+            Instant::now() < deadline,
+            "no surrogate; node:\n{}",
+            node.output()
+        );
+    }
+}
+
+#[test]
+fn devices_an_unplugged_urg_is_reconnected_and_streams_again() {
+    let rig = Rig::new("dev-unplug");
+    let emulator = rig.emulator("urg-04lx", &["--unplug-after", "3", "--unplug-for", "1.5"]);
+    let cloud_inbox = rig.inbox("cloud", "dev");
+    let status_inbox = rig.inbox("status", "dev");
+    let node = rig.serial("hokuyo", &[]);
+    clouds(&cloud_inbox, 5, &node);
+    // The device comes back (powered up afresh) behind the same link.
+    emulator.expect_line("sensor-sim: urg-04lx on", LONG);
+    let status = status_until(
+        &status_inbox,
+        &node,
+        "a disconnect and a second handshake",
+        |s| s.counter("disconnects") >= 1 && s.counter("handshakes") >= 2,
+    );
+    assert_eq!(label(&status, "device.state"), "streaming", "{status:?}");
+    let _ = cloud_inbox.drain().count();
+    clouds(&cloud_inbox, 5, &node);
+}
+
+#[test]
+fn devices_a_urg_left_streaming_by_a_killed_driver_is_recovered() {
+    let rig = Rig::new("dev-crash");
+    let _emulator = rig.emulator("urg-04lx", &[]);
+    let cloud_inbox = rig.inbox("cloud", "dev");
+    let status_inbox = rig.inbox("status", "dev");
+    let first = rig.serial("hokuyo", &[]);
+    clouds(&cloud_inbox, 3, &first);
+    // SIGKILL: no QT is sent, the sensor keeps streaming into the pty.
+    first.signal(libc::SIGKILL);
+    drop(first);
+    std::thread::sleep(Duration::from_millis(500));
+    let _ = cloud_inbox.drain().count();
+    let second = rig.serial("hokuyo", &[]);
+    clouds(&cloud_inbox, 3, &second);
+    let status = status_until(&status_inbox, &second, "a stream found running", |s| {
+        s.counter("unexpected_echo") + s.counter("malformed_reply") > 0
+            && label(s, "device.state") == "streaming"
+    });
+    assert_eq!(status.counter("handshakes"), 1, "{status:?}");
+}
+
+#[test]
+fn devices_an_rs232_urg_is_found_by_baud_probing_in_scip_1_1_and_rebooted_when_abnormal() {
+    let rig = Rig::new("dev-rs232");
+    // The sensor's UART runs at 115200, the probe starts at 19200; it answers
+    // in SCIP 1.1 until switched, and turns abnormal after 40 scans.
+    let _emulator = rig.emulator(
+        "urg-04lx",
+        &["--rs232", "115200", "--scip1", "--abnormal-after", "40"],
+    );
+    let cloud_inbox = rig.inbox("cloud", "dev");
+    let status_inbox = rig.inbox("status", "dev");
+    let node = rig.serial("hokuyo", &["--rs232"]);
+    clouds(&cloud_inbox, 3, &node);
+    let status = status_until(&status_inbox, &node, "a reboot and a new stream", |s| {
+        s.counter("device_error_abnormal") >= 1
+            && s.counter("handshakes") >= 2
+            && label(s, "device.state") == "streaming"
+    });
+    assert!(
+        status.counter("timeout") >= 1,
+        "the wrong rates timed out: {status:?}"
+    );
+    let _ = cloud_inbox.drain().count();
+    clouds(&cloud_inbox, 3, &node);
+}
+
+#[test]
+fn devices_an_rplidar_a1_streams_revolutions_with_its_motor_on_dtr_and_survives_an_unplug() {
+    let rig = Rig::new("dev-a1");
+    let emulator = rig.emulator(
+        "rplidar-a1",
+        &[
+            "--mount",
+            "0,0,0.3,0,0,0",
+            "--unplug-after",
+            "5",
+            "--unplug-for",
+            "1",
+        ],
+    );
+    let cloud_inbox = rig.inbox("cloud", "dev");
+    let status_inbox = rig.inbox("status", "dev");
+    let node = rig.serial("rplidar", &["--mount", "0,0,0.3,0,0,0"]);
+    // One cloud a revolution (~5.5 Hz), in the table's plane 0.3 m up.
+    let got = clouds(&cloud_inbox, 5, &node);
+    for cloud in &got {
+        let points = cloud.point_array().unwrap();
+        assert!(
+            points.len() > 100,
+            "a revolution of the table's objects: {}",
+            points.len()
+        );
+        assert!(
+            points.iter().all(|p| (p[2] - 0.3).abs() < 1e-3),
+            "a planar scan"
+        );
+    }
+    let status = status_until(&status_inbox, &node, "streaming", |s| {
+        label(s, "device.state") == "streaming"
+    });
+    assert_eq!(label(&status, "device.model"), "A1M8", "{status:?}");
+    assert_eq!(label(&status, "device.motor_control"), "dtr", "{status:?}");
+    // A pty has no modem lines: the DTR writes fail, counted, not fatal.
+    assert!(status.counter("line_setting_failures") >= 1, "{status:?}");
+    emulator.expect_line("sensor-sim: rplidar-a1 on", LONG);
+    status_until(&status_inbox, &node, "a disconnect and a new stream", |s| {
+        s.counter("disconnects") >= 1
+            && s.counter("handshakes") >= 2
+            && label(s, "device.state") == "streaming"
+    });
+    let _ = cloud_inbox.drain().count();
+    clouds(&cloud_inbox, 3, &node);
+}
+
+#[test]
+fn devices_an_rplidar_a2_left_streaming_dense_capsules_by_a_killed_driver_is_recovered() {
+    let rig = Rig::new("dev-a2");
+    let _emulator = rig.emulator(
+        "rplidar-a2",
+        &["--mount", "0,0,0.3,0,0,0", "--corrupt-every", "40"],
+    );
+    let cloud_inbox = rig.inbox("cloud", "dev");
+    let status_inbox = rig.inbox("status", "dev");
+    let first = rig.serial("rplidar", &["--mount", "0,0,0.3,0,0,0"]);
+    clouds(&cloud_inbox, 3, &first);
+    let status = status_until(
+        &status_inbox,
+        &first,
+        "dense capsules, PWM and a bad checksum",
+        |s| label(s, "device.state") == "streaming" && s.counter("bad_checksum") >= 1,
+    );
+    assert!(
+        label(&status, "device.scan_mode").contains("dense"),
+        "{status:?}"
+    );
+    assert!(
+        label(&status, "device.motor_control").starts_with("pwm"),
+        "{status:?}"
+    );
+    first.signal(libc::SIGKILL);
+    drop(first);
+    std::thread::sleep(Duration::from_millis(500));
+    let _ = cloud_inbox.drain().count();
+    let second = rig.serial("rplidar", &["--mount", "0,0,0.3,0,0,0"]);
+    clouds(&cloud_inbox, 3, &second);
+}
+
+/// A horizontal plane at z = 0, 40 m across, as an OBJ file in `dir`.
+fn floor_obj(dir: &Path) -> String {
+    let file = dir.join("floor.obj");
+    let obj = "v -20 -20 0\nv 20 -20 0\nv 20 20 0\nv -20 20 0\nf 1 2 3\nf 1 3 4\n";
+    std::fs::write(&file, obj).expect("the floor mesh is written");
+    path(&file)
+}
+
+/// Nodding 30° either side of 50° down, every 2 s, 1.5 m above the floor.
+const NODDING: &str = "triangle:30:2:50";
+const NOD_MOUNT: [&str; 4] = ["--mount", "0,0,1.5,0,0,0", "--mount-axis", "y"];
+
+/// Every point of `clouds` lies on the floor (the beam placed at the right
+/// angle at its own time).
+fn assert_on_floor(clouds: &[CloudMessage]) {
+    let mut points = 0;
+    for cloud in clouds {
+        for p in cloud.point_array().unwrap() {
+            points += 1;
+            assert!(p[2].abs() < 0.1, "a floor point at z = {}", p[2]);
+        }
+    }
+    assert!(points > 50, "{points} floor points");
+}
+
+#[test]
+fn devices_a_nodding_tfmini_placed_by_its_sweep_profile_draws_the_floor() {
+    let rig = Rig::new("dev-tf");
+    let floor = floor_obj(rig.dir.path());
+    let mut args = vec![
+        "--world",
+        floor.as_str(),
+        "--sweep",
+        NODDING,
+        "--corrupt-every",
+        "50",
+    ];
+    args.extend(NOD_MOUNT);
+    let _emulator = rig.emulator("tfmini-plus", &args);
+    let cloud_inbox = rig.inbox("cloud", "dev");
+    let status_inbox = rig.inbox("status", "dev");
+    let mut node_args = vec!["--sweep", NODDING];
+    node_args.extend(NOD_MOUNT);
+    let node = rig.serial("tfmini", &node_args);
+    let got = clouds(&cloud_inbox, 3, &node);
+    assert_on_floor(&got[1..]);
+    let status = status_until(&status_inbox, &node, "a counted bad checksum", |s| {
+        s.counter("bad_checksum") >= 1 && label(s, "device.state") == "streaming"
+    });
+    assert_eq!(label(&status, "device.model"), "tfmini-plus", "{status:?}");
+}
+
+#[test]
+fn devices_a_nodding_tfmini_placed_by_joint_states_draws_the_floor() {
+    let rig = Rig::new("dev-tf-joint");
+    let floor = floor_obj(rig.dir.path());
+    let mut args = vec!["--world", floor.as_str(), "--sweep", NODDING];
+    args.extend(NOD_MOUNT);
+    let _emulator = rig.emulator("tfmini-plus", &args);
+    // The unit's controller: its angle as joint states, 200 Hz.
+    let profile: shroud_core::ingest::assembly::SweepProfile = NODDING.parse().unwrap();
+    let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let publisher = {
+        let key = format!("shroud/{}/joints/mount", rig.namespace);
+        let session = rig.hub.clone();
+        let stop = stop.clone();
+        std::thread::spawn(move || {
+            let mut sequence = 0;
+            while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                let now = common::unix_ns();
+                let msg = shroud_core::message::JointStateMessage::new(
+                    now,
+                    sequence,
+                    "tilt-unit",
+                    vec!["tilt".into()],
+                    vec![profile.angle_at(now)],
+                );
+                use zenoh::Wait;
+                session.put(&key, msg.to_bytes().unwrap()).wait().unwrap();
+                sequence += 1;
+                std::thread::sleep(Duration::from_millis(5));
+            }
+        })
+    };
+    let cloud_inbox = rig.inbox("cloud", "dev");
+    let mut node_args = vec!["--mount-joint", "tilt", "--cloud", "time:1"];
+    node_args.extend(NOD_MOUNT);
+    let node = rig.serial("tfmini", &node_args);
+    let got = clouds(&cloud_inbox, 3, &node);
+    stop.store(true, std::sync::atomic::Ordering::Relaxed);
+    publisher.join().unwrap();
+    assert_on_floor(&got[1..]);
+}
+
+#[test]
+fn devices_the_lidar_launch_file_runs_an_emulated_urg_to_the_guard() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/launch/lidar.toml");
+    let mut launcher = Proc::start(&["launch", file, "--duration", "12"]);
+    // A summary line once a certified surrogate of an assembled sweep came
+    // through the fit node and the guard is answering the arm.
+    let line = launcher.expect_line("certified", LONG);
+    assert!(line.contains("0 violations"), "{line}");
+    launcher.expect_line("demo_arm: ", LONG);
+    assert!(launcher.wait_exit(LONG).success(), "{}", launcher.output());
+    let output = launcher.output();
+    assert!(output.contains("all nodes stopped cleanly"), "{output}");
+}
