@@ -147,6 +147,45 @@ fn status_until(
     );
 }
 
+/// Starts a fit node on `cloud/dev` looking down.
+fn fit_from_above(rig: &Rig) -> Proc {
+    rig.node(&[
+        "fit", "--input", "dev", "--grid", "12x12", "--side", "upper", "--dir", "0,0,-1",
+    ])
+}
+
+/// Waits for a surrogate of one of the clouds seen (`seen` and those still
+/// arriving) and checks it certifies every point of that cloud.
+fn expect_certified_surrogate(
+    cloud_inbox: &Inbox,
+    surrogate_inbox: &Inbox,
+    mut seen: Vec<CloudMessage>,
+    node: &Proc,
+) {
+    let deadline = Instant::now() + LONG;
+    loop {
+        while let Ok(Some(sample)) = cloud_inbox.try_recv() {
+            seen.push(CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap());
+        }
+        if let Ok(Some(sample)) = surrogate_inbox.recv_timeout(Duration::from_millis(200)) {
+            let (msg, _) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+            if let Some(cloud) = seen.iter().find(|c| c.sequence == msg.source_sequence) {
+                let points = cloud.point_array().unwrap().len() as u64;
+                for surface in &msg.surfaces {
+                    assert_eq!(surface.certificate.violations, 0);
+                    assert_eq!(surface.certificate.points_checked, points);
+                }
+                return;
+            }
+        }
+        assert!(
+            Instant::now() < deadline,
+            "no surrogate; node:\n{}",
+            node.output()
+        );
+    }
+}
+
 fn label<'a>(status: &'a NodeStatusMessage, key: &str) -> &'a str {
     status.labels.get(key).map_or("", String::as_str)
 }
@@ -161,9 +200,7 @@ fn devices_a_tilting_urg_becomes_clouds_and_certified_surrogates() {
     let status_inbox = rig.inbox("status", "dev");
     let surrogate_inbox = rig.inbox("surrogate", "dev");
     let node = rig.serial("hokuyo", &TILTING);
-    let _fit = rig.node(&[
-        "fit", "--input", "dev", "--grid", "12x12", "--side", "upper", "--dir", "0,0,-1",
-    ]);
+    let _fit = fit_from_above(&rig);
     // Sweeps of one second: each cloud spans ~10 scans of 682 rays.
     let got = clouds(&cloud_inbox, 4, &node);
     // The first sweep began before the node did: skip it.
@@ -185,7 +222,13 @@ fn devices_a_tilting_urg_becomes_clouds_and_certified_surrogates() {
         // Nodding ±35° from 2.5 m sweeps x over about ±1.75 m.
         let max_x = points.iter().map(|p| p[0].abs()).fold(0.0, f32::max);
         assert!(max_x > 1.2 && max_x < 2.2, "sweep reach {max_x}");
-        assert!(cloud.pipeline_ns > 0);
+        // Aged from its first scan's arrival, a sweep's beginning: close to
+        // a second before its end, not from its last scan.
+        assert!(
+            cloud.pipeline_ns > 600_000_000,
+            "age {} ns",
+            cloud.pipeline_ns
+        );
     }
     let status = status_until(&status_inbox, &node, "streaming and counted faults", |s| {
         label(s, "device.state") == "streaming"
@@ -201,31 +244,7 @@ fn devices_a_tilting_urg_becomes_clouds_and_certified_surrogates() {
         label(&status, "device.health").starts_with("ok"),
         "{status:?}"
     );
-    // Certified surrogates of the assembled clouds downstream: each certifies
-    // every point of the cloud it names.
-    let mut seen = got;
-    let deadline = Instant::now() + LONG;
-    loop {
-        while let Ok(Some(sample)) = cloud_inbox.try_recv() {
-            seen.push(CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap());
-        }
-        if let Ok(Some(sample)) = surrogate_inbox.recv_timeout(Duration::from_millis(200)) {
-            let (msg, _) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
-            if let Some(cloud) = seen.iter().find(|c| c.sequence == msg.source_sequence) {
-                let points = cloud.point_array().unwrap().len() as u64;
-                for surface in &msg.surfaces {
-                    assert_eq!(surface.certificate.violations, 0);
-                    assert_eq!(surface.certificate.points_checked, points);
-                }
-                break;
-            }
-        }
-        assert!(
-            Instant::now() < deadline,
-            "no surrogate; node:\n{}",
-            node.output()
-        );
-    }
+    expect_certified_surrogate(&cloud_inbox, &surrogate_inbox, got, &node);
 }
 
 #[test]
@@ -313,7 +332,9 @@ fn devices_an_rplidar_a1_streams_revolutions_with_its_motor_on_dtr_and_survives_
     );
     let cloud_inbox = rig.inbox("cloud", "dev");
     let status_inbox = rig.inbox("status", "dev");
+    let surrogate_inbox = rig.inbox("surrogate", "dev");
     let node = rig.serial("rplidar", &["--mount", "0,0,0.3,0,0,0"]);
+    let _fit = fit_from_above(&rig);
     // One cloud a revolution (~5.5 Hz), in the table's plane 0.3 m up.
     let got = clouds(&cloud_inbox, 5, &node);
     for cloud in &got {
@@ -335,6 +356,7 @@ fn devices_an_rplidar_a1_streams_revolutions_with_its_motor_on_dtr_and_survives_
     assert_eq!(label(&status, "device.motor_control"), "dtr", "{status:?}");
     // A pty has no modem lines: the DTR writes fail, counted, not fatal.
     assert!(status.counter("line_setting_failures") >= 1, "{status:?}");
+    expect_certified_surrogate(&cloud_inbox, &surrogate_inbox, got, &node);
     emulator.expect_line("sensor-sim: rplidar-a1 on", LONG);
     status_until(&status_inbox, &node, "a disconnect and a new stream", |s| {
         s.counter("disconnects") >= 1
@@ -378,67 +400,87 @@ fn devices_an_rplidar_a2_left_streaming_dense_capsules_by_a_killed_driver_is_rec
     clouds(&cloud_inbox, 3, &second);
 }
 
-/// A horizontal plane at z = 0, 40 m across, as an OBJ file in `dir`.
-fn floor_obj(dir: &Path) -> String {
-    let file = dir.join("floor.obj");
-    let obj = "v -20 -20 0\nv 20 -20 0\nv 20 20 0\nv -20 20 0\nf 1 2 3\nf 1 3 4\n";
-    std::fs::write(&file, obj).expect("the floor mesh is written");
+/// A slope `z = x / 2`, 40 m across, as an OBJ file in `dir`.
+fn slope_obj(dir: &Path) -> String {
+    let file = dir.join("slope.obj");
+    let obj = "v -20 -20 -10\nv 20 -20 10\nv 20 20 10\nv -20 20 -10\nf 1 2 3\nf 1 3 4\n";
+    std::fs::write(&file, obj).expect("the slope mesh is written");
     path(&file)
 }
 
-/// Nodding 30° either side of 50° down, every 2 s, 1.5 m above the floor.
-const NODDING: &str = "triangle:30:2:50";
-const NOD_MOUNT: [&str; 4] = ["--mount", "0,0,1.5,0,0,0", "--mount-axis", "y"];
+/// A pan unit 1.5 m up turning once a second, the beam 50° below horizontal.
+const PANNING: &str = "rotate:1";
+const PAN_MOUNT: [&str; 6] = [
+    "--mount",
+    "0,0,1.5,0,0,0",
+    "--mount-axis",
+    "z",
+    "--sensor-offset",
+    "0,0,0,0,50,0",
+];
 
-/// Every point of `clouds` lies on the floor (the beam placed at the right
-/// angle at its own time).
-fn assert_on_floor(clouds: &[CloudMessage]) {
+/// Every point of `clouds` lies on the slope: the beam was placed at the
+/// pan angle of its own time (5° off would put points ~0.1 m off it).
+fn assert_on_slope(clouds: &[CloudMessage]) {
     let mut points = 0;
     for cloud in clouds {
         for p in cloud.point_array().unwrap() {
             points += 1;
-            assert!(p[2].abs() < 0.1, "a floor point at z = {}", p[2]);
+            assert!(
+                (p[2] - p[0] / 2.0).abs() < 0.06,
+                "a point {p:?} off the slope"
+            );
         }
     }
-    assert!(points > 50, "{points} floor points");
+    assert!(points > 50, "{points} points on the slope");
 }
 
 #[test]
-fn devices_a_nodding_tfmini_placed_by_its_sweep_profile_draws_the_floor() {
+fn devices_a_panning_tfmini_placed_by_its_sweep_profile_draws_the_slope() {
     let rig = Rig::new("dev-tf");
-    let floor = floor_obj(rig.dir.path());
+    let slope = slope_obj(rig.dir.path());
     let mut args = vec![
         "--world",
-        floor.as_str(),
+        slope.as_str(),
         "--sweep",
-        NODDING,
+        PANNING,
         "--corrupt-every",
         "50",
     ];
-    args.extend(NOD_MOUNT);
+    // It also goes silent for a second, 3 s after power-up.
+    args.extend(["--stall-after", "3", "--stall-for", "1"]);
+    args.extend(PAN_MOUNT);
     let _emulator = rig.emulator("tfmini-plus", &args);
     let cloud_inbox = rig.inbox("cloud", "dev");
     let status_inbox = rig.inbox("status", "dev");
-    let mut node_args = vec!["--sweep", NODDING];
-    node_args.extend(NOD_MOUNT);
+    let mut node_args = vec!["--sweep", PANNING];
+    node_args.extend(PAN_MOUNT);
+    let surrogate_inbox = rig.inbox("surrogate", "dev");
     let node = rig.serial("tfmini", &node_args);
+    let _fit = fit_from_above(&rig);
     let got = clouds(&cloud_inbox, 3, &node);
-    assert_on_floor(&got[1..]);
-    let status = status_until(&status_inbox, &node, "a counted bad checksum", |s| {
-        s.counter("bad_checksum") >= 1 && label(s, "device.state") == "streaming"
+    assert_on_slope(&got[1..]);
+    expect_certified_surrogate(&cloud_inbox, &surrogate_inbox, got, &node);
+    let status = status_until(&status_inbox, &node, "a bad checksum and a stall", |s| {
+        s.counter("bad_checksum") >= 1
+            && s.counter("reconnects") >= 1
+            && label(s, "device.state") == "streaming"
     });
     assert_eq!(label(&status, "device.model"), "tfmini-plus", "{status:?}");
+    // Streaming again after the stall.
+    let _ = cloud_inbox.drain().count();
+    assert_on_slope(&clouds(&cloud_inbox, 2, &node)[1..]);
 }
 
 #[test]
-fn devices_a_nodding_tfmini_placed_by_joint_states_draws_the_floor() {
+fn devices_a_panning_tfmini_placed_by_joint_states_draws_the_slope() {
     let rig = Rig::new("dev-tf-joint");
-    let floor = floor_obj(rig.dir.path());
-    let mut args = vec!["--world", floor.as_str(), "--sweep", NODDING];
-    args.extend(NOD_MOUNT);
+    let slope = slope_obj(rig.dir.path());
+    let mut args = vec!["--world", slope.as_str(), "--sweep", PANNING];
+    args.extend(PAN_MOUNT);
     let _emulator = rig.emulator("tfmini-plus", &args);
     // The unit's controller: its angle as joint states, 200 Hz.
-    let profile: shroud_core::ingest::assembly::SweepProfile = NODDING.parse().unwrap();
+    let profile: shroud_core::ingest::assembly::SweepProfile = PANNING.parse().unwrap();
     let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     let publisher = {
         let key = format!("shroud/{}/joints/mount", rig.namespace);
@@ -451,8 +493,8 @@ fn devices_a_nodding_tfmini_placed_by_joint_states_draws_the_floor() {
                 let msg = shroud_core::message::JointStateMessage::new(
                     now,
                     sequence,
-                    "tilt-unit",
-                    vec!["tilt".into()],
+                    "pan-unit",
+                    vec!["pan".into()],
                     vec![profile.angle_at(now)],
                 );
                 use zenoh::Wait;
@@ -463,13 +505,49 @@ fn devices_a_nodding_tfmini_placed_by_joint_states_draws_the_floor() {
         })
     };
     let cloud_inbox = rig.inbox("cloud", "dev");
-    let mut node_args = vec!["--mount-joint", "tilt", "--cloud", "time:1"];
-    node_args.extend(NOD_MOUNT);
-    let node = rig.serial("tfmini", &node_args);
+    let mut node_args = vec!["--mount-joint", "pan", "--cloud", "time:1"];
+    node_args.extend(PAN_MOUNT);
+    let mut node = rig.serial("tfmini", &node_args);
     let got = clouds(&cloud_inbox, 3, &node);
+    assert_on_slope(&got[1..]);
+    // A SIGTERM stops it cleanly while joint states still come.
+    node.signal(libc::SIGTERM);
+    let status = node.wait_exit(Duration::from_secs(8));
+    assert!(status.success(), "{status:?}: {}", node.output());
     stop.store(true, std::sync::atomic::Ordering::Relaxed);
     publisher.join().unwrap();
-    assert_on_floor(&got[1..]);
+}
+
+#[test]
+fn devices_a_utm_30lx_streams_multi_echo_ranges_with_intensity() {
+    let rig = Rig::new("dev-utm");
+    let _emulator = rig.emulator("utm-30lx", &["--mount", "0,0,0.5,0,0,0"]);
+    let cloud_inbox = rig.inbox("cloud", "dev");
+    let status_inbox = rig.inbox("status", "dev");
+    let node = rig.serial(
+        "hokuyo",
+        &[
+            "--scip-scan",
+            "nd",
+            "--intensity",
+            "--mount",
+            "0,0,0.5,0,0,0",
+        ],
+    );
+    // 40 scans a second of 1081 steps, some with a second or third echo.
+    let got = clouds(&cloud_inbox, 20, &node);
+    for cloud in &got {
+        let intensity = cloud
+            .intensity_array()
+            .unwrap()
+            .expect("NE carries intensity");
+        assert_eq!(intensity.len(), cloud.point_array().unwrap().len());
+    }
+    let status = status_until(&status_inbox, &node, "NE streaming", |s| {
+        label(s, "device.state") == "streaming"
+    });
+    assert_eq!(label(&status, "device.multiecho"), "yes", "{status:?}");
+    assert_eq!(label(&status, "device.scan_command"), "NE", "{status:?}");
 }
 
 #[test]
@@ -484,4 +562,69 @@ fn devices_the_lidar_launch_file_runs_an_emulated_urg_to_the_guard() {
     assert!(launcher.wait_exit(LONG).success(), "{}", launcher.output());
     let output = launcher.output();
     assert!(output.contains("all nodes stopped cleanly"), "{output}");
+}
+
+#[test]
+fn devices_bad_device_settings_are_named_errors_before_anything_opens() {
+    let cases: [(&[&str], &str); 7] = [
+        (
+            &[
+                "node",
+                "serial",
+                "--device",
+                "rplidar",
+                "--port",
+                "/x",
+                "--cluster",
+                "3",
+            ],
+            "--cluster applies to --device hokuyo only",
+        ),
+        (
+            &["sensor-sim", "--device", "lidar-9000"],
+            "unknown device model",
+        ),
+        (
+            &[
+                "node", "serial", "--device", "hokuyo", "--port", "/x", "--sweep", "wobble:1",
+            ],
+            "invalid sweep profile",
+        ),
+        (
+            &["node", "serial", "--port", "/x", "--sweep", "rotate:1"],
+            "apply to range devices only",
+        ),
+        (
+            &[
+                "sensor-sim",
+                "--device",
+                "urg-04lx",
+                "--world",
+                "/nonexistent.obj",
+            ],
+            "cannot read the world mesh",
+        ),
+        (
+            &[
+                "node", "serial", "--device", "tfmini", "--port", "/x", "--cloud", "sweep",
+            ],
+            "needs a moving mount",
+        ),
+        (
+            &[
+                "node", "serial", "--device", "hokuyo", "--port", "/x", "--mount", "1,2,3",
+            ],
+            "expected 6 comma-separated numbers",
+        ),
+    ];
+    for (args, message) in cases {
+        let mut proc = Proc::start(args);
+        let status = proc.wait_exit(LONG);
+        assert!(!status.success(), "{args:?} must fail");
+        assert!(
+            proc.output().contains(message),
+            "{args:?}: {}",
+            proc.output()
+        );
+    }
 }

@@ -7,10 +7,14 @@
 //!   SLCAN (Lawicel ASCII) and candump-log codecs that carry CAN frames;
 //! - [`device`]: the sans-I/O contract of real sensors' drivers
 //!   ([`device::DeviceDriver`]) and the range scans they deliver;
+//! - [`scip`], [`rplidar`], [`benewake`]: the drivers of Hokuyo SCIP 2.0
+//!   lidars, Slamtec RPLIDARs and Benewake TFmini-family rangefinders;
 //! - [`assembly`]: range scans placed through a (moving) mount into 3D clouds.
 //!
-//! Every decoder is streaming, never panics on any input, returns named
-//! [`IngestError`]s and counts them per [`ErrorKind`] in [`DecoderStats`].
+//! Every decoder is streaming and never panics on any input. The protocol
+//! decoders return named [`IngestError`]s and count them per [`ErrorKind`] in
+//! [`DecoderStats`]; the device drivers count theirs by name in
+//! [`device::DeviceStats`].
 // `!(x > 0.0)` deliberately rejects NaN as well, which `x <= 0.0` would let through.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 

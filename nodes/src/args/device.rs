@@ -76,6 +76,11 @@ pub enum ScipScan {
     Me,
     /// Polled single scans.
     Gd,
+    /// Streamed multi-echo ranges: every echo of a step is its own ray (NE
+    /// with --intensity).
+    Nd,
+    /// Polled multi-echo single scans (HE with --intensity).
+    Hd,
 }
 
 #[derive(Debug, Clone, Args)]
@@ -96,7 +101,7 @@ pub struct DeviceArgs {
     /// Hokuyo: the measurement command.
     #[arg(long, value_enum, default_value_t = ScipScan::Md)]
     pub scip_scan: ScipScan,
-    /// Hokuyo: ask for intensity (md becomes me, gd becomes ge).
+    /// Hokuyo: ask for intensity (md becomes me, gd ge, nd ne, hd he).
     #[arg(long)]
     pub intensity: bool,
     /// Hokuyo: adjacent steps merged into one ray (the nearest of them), 1..=99.
@@ -183,6 +188,18 @@ impl DeviceArgs {
         if self.target_baud.is_some() && !self.rs232 {
             bail!("--target-baud needs --rs232 (over USB the rate does not matter)");
         }
+        if self.scip_scan == ScipScan::Ms && self.intensity {
+            bail!("--scip-scan ms has no intensity (use me, ne or he)");
+        }
+        if let (Some(start), Some(end)) = (self.start_step, self.end_step) {
+            if start > end {
+                bail!("--start-step {start} is after --end-step {end}");
+            }
+        }
+        let commanded = self.frame_rate.is_some() || self.millimetres || self.save;
+        if self.device == DeviceKind::Tfmini && self.model == BenewakeModel::Tfmini && commanded {
+            bail!("the original TFmini takes no commands: --frame-rate, --millimetres and --save do not apply");
+        }
         Ok(())
     }
 
@@ -238,6 +255,8 @@ impl DeviceArgs {
                 ScipScan::Ms => ScanCommand::Ms,
                 ScipScan::Me => ScanCommand::Me,
                 ScipScan::Gd => ScanCommand::Gd,
+                ScipScan::Nd => ScanCommand::Nd,
+                ScipScan::Hd => ScanCommand::Hd,
             },
             start_step: self.start_step,
             end_step: self.end_step,

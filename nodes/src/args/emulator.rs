@@ -109,6 +109,17 @@ impl EmulatorArgs {
                 bail!("{name} must be a non-negative number of seconds");
             }
         }
+        let hokuyo_only = [
+            ("--rs232", self.rs232.is_some()),
+            ("--scip1", self.scip1),
+            ("--clock-start-ms", self.clock_start_ms != 0),
+            ("--abnormal-after", self.abnormal_after.is_some()),
+        ];
+        for (flag, given) in hokuyo_only {
+            if given && !model.starts_with("urg-") && !model.starts_with("utm-") {
+                bail!("{flag} applies to the Hokuyo models (urg-04lx, utm-30lx) only");
+            }
+        }
         let bvh = Arc::new(self.world_bvh()?);
         let mount = self.mount.mount()?;
         let start_unix_ns = crate::transport::unix_ns();

@@ -214,8 +214,9 @@ impl Line {
     }
 
     /// Carries out the driver's outputs in order, as the node's port does
-    /// (nodes/src/ingest/device_port.rs): scans to `scans`, a reconnect as a
-    /// fresh `connect` (the device stays powered, as a reopened USB port's).
+    /// (nodes/src/ingest/device_port.rs): scans into `rec`, faults noted
+    /// there, a reconnect as a fresh `connect` that drops the outputs after
+    /// it (the device stays powered, as behind a reopened USB port).
     fn apply(
         &mut self,
         driver: &mut dyn DeviceDriver,
@@ -283,17 +284,6 @@ fn record(device: &Device, world: &Arc<Bvh>, wanted: usize) -> Result<Recording>
             driver.receive(&bytes, at, &mut outputs);
         }
         driver.poll(at, &mut outputs);
-        if std::env::var("DBG").is_ok() && step < 70 {
-            let hex: String = bytes.iter().map(|b| format!("{b:02x}")).collect();
-            let outs: Vec<String> = outputs
-                .iter()
-                .map(|o| match o {
-                    DriverOutput::Scan(s) => format!("scan stamp {}", s.stamp_ns - ORIGIN.unix_ns),
-                    o => format!("{o:?}"),
-                })
-                .collect();
-            eprintln!("{step} {hex} {outs:?}");
-        }
         if !bytes.is_empty() || !outputs.is_empty() || driver.stats() != &stats {
             stats = driver.stats().clone();
             rec.chunks.push(Chunk {
@@ -311,11 +301,9 @@ fn record(device: &Device, world: &Arc<Bvh>, wanted: usize) -> Result<Recording>
         rec.notes
             .push(format!("{} bytes garbled by a baud mismatch", line.garbled));
     }
-    if line.flushes > 0 {
-        rec.notes.push(format!(
-            "{} input flushes (nothing to flush in memory)",
-            line.flushes
-        ));
+    // Every driver flushes once at connect; more means it started over.
+    if line.flushes > 1 {
+        rec.notes.push(format!("{} input flushes", line.flushes));
     }
     if rec.scans.len() < wanted {
         rec.notes.push(format!(
@@ -361,11 +349,12 @@ fn feed(driver: &mut dyn DeviceDriver, chunk: &Chunk, outputs: &mut Vec<DriverOu
         driver.receive(&chunk.bytes, chunk.at, outputs);
     }
     driver.poll(chunk.at, outputs);
-    if outputs
+    // The port drops what follows a reconnect, as [`Line::apply`] does.
+    if let Some(i) = outputs
         .iter()
-        .any(|o| matches!(o, DriverOutput::Reconnect(_)))
+        .position(|o| matches!(o, DriverOutput::Reconnect(_)))
     {
-        outputs.retain(|o| matches!(o, DriverOutput::Scan(_)));
+        outputs.truncate(i);
         driver.connect(chunk.at, outputs);
     }
 }
@@ -436,21 +425,40 @@ fn check_same(recorded: &[RangeScan], replayed: &[RangeScan]) -> Result<()> {
     Ok(())
 }
 
-/// Consecutive scans whose stamps lie more than 1.5 typical periods apart
-/// (scans the device sent that the driver did not deliver, or a change of
-/// rate): the typical period, and each gap's (simulated s of the later
-/// scan's arrival, ms between the stamps).
-fn stamp_gaps(scans: &[RangeScan]) -> (f64, Vec<(f64, f64)>) {
-    let deltas: Vec<(f64, f64)> = scans
+/// What consecutive scans' stamps say: the typical period (ms), the gaps
+/// of more than 1.5 periods (scans the device sent that the driver did not
+/// deliver, or a change of rate), and the scans stamped no later than the
+/// one before; each as (simulated s of the later scan's arrival, ms from the
+/// earlier stamp).
+type StampSteps = (f64, Vec<(f64, f64)>, Vec<(f64, f64)>);
+
+fn stamp_steps(scans: &[RangeScan]) -> StampSteps {
+    let steps: Vec<(f64, f64)> = scans
         .windows(2)
         .map(|w| {
-            let ns = w[1].stamp_ns.saturating_sub(w[0].stamp_ns);
-            (seconds(w[1].received), ns as f64 * 1e-6)
+            let ns = w[1].stamp_ns as f64 - w[0].stamp_ns as f64;
+            (seconds(w[1].received), ns * 1e-6)
         })
         .collect();
-    let typical = median(&mut deltas.iter().map(|d| d.1).collect::<Vec<_>>());
-    let gaps = deltas.into_iter().filter(|d| d.1 > 1.5 * typical).collect();
-    (typical, gaps)
+    let typical = median(&mut steps.iter().map(|d| d.1).collect::<Vec<_>>());
+    let gaps = steps
+        .iter()
+        .copied()
+        .filter(|d| d.1 > 1.5 * typical)
+        .collect();
+    let repeats = steps.into_iter().filter(|d| d.1 <= 0.0).collect();
+    (typical, gaps, repeats)
+}
+
+/// The first few of `steps`, for a note.
+fn list_steps(steps: &[(f64, f64)]) -> String {
+    let listed: Vec<String> = steps
+        .iter()
+        .take(5)
+        .map(|(at, ms)| format!("{ms:.2} ms after the scan before, received at {at:.3} s"))
+        .collect();
+    let more = if steps.len() > 5 { "; ..." } else { "" };
+    format!("{}{more}", listed.join("; "))
 }
 
 /// One line of the table.
@@ -524,18 +532,19 @@ fn describe_losses(rec: &mut Recording) {
     for (kind, n) in rec.stats.error_counts() {
         rec.notes.push(format!("driver error {kind}: {n}"));
     }
-    let (period_ms, gaps) = stamp_gaps(&rec.scans);
+    let (period_ms, gaps, repeats) = stamp_steps(&rec.scans);
     if !gaps.is_empty() {
-        let listed: Vec<String> = gaps
-            .iter()
-            .take(5)
-            .map(|(at, ms)| format!("{ms:.2} ms before the scan that arrived at {at:.3} s"))
-            .collect();
         rec.notes.push(format!(
-            "{} gaps of more than 1.5 typical periods ({period_ms:.2} ms) between consecutive \
-             scans' stamps: {}",
+            "{} stamp gaps over 1.5 typical periods ({period_ms:.2} ms): {}",
             gaps.len(),
-            listed.join("; ")
+            list_steps(&gaps)
+        ));
+    }
+    if !repeats.is_empty() {
+        rec.notes.push(format!(
+            "{} scans stamped no later than the scan before: {}",
+            repeats.len(),
+            list_steps(&repeats)
         ));
     }
 }
@@ -576,7 +585,7 @@ fn print_table(rows: &[Row], repetitions: usize) {
             .map(|l| (l.p50, l.p99))
             .unwrap_or((f64::NAN, f64::NAN));
         println!(
-            "| {} | {} | {:.2} ({:.2}) | {} | {:.0} | {:.1} KB/s | {:.2} ({}) | {:.2} ms | {:.0} | {:.0} | {:.0}x | {:.1} us | {:.1} us |",
+            "| {} | {} | {:.2} ({:.3}) | {} | {:.0} | {:.1} KB/s | {:.2} ({}) | {:.2} ms | {:.0} | {:.0} | {:.0}x | {:.1} us | {:.1} us |",
             r.label,
             r.stream_bytes,
             r.simulated_s,

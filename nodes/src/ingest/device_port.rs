@@ -182,12 +182,20 @@ impl Session<'_> {
     /// Carries out the driver's outputs in order; stops at the first that
     /// ends the session.
     fn apply(&mut self, outputs: &mut Vec<DriverOutput>) -> Option<Ended> {
+        let mut ended = None;
         for output in outputs.drain(..) {
+            if ended.is_some() {
+                // The port is done for; what the driver reported still counts.
+                if !is_port_action(&output) {
+                    (self.on_output)(output, self.driver.stats(), self.stats);
+                }
+                continue;
+            }
             match output {
                 DriverOutput::Write(bytes) => {
                     let written = self.port.write_all(&bytes).and_then(|()| self.port.flush());
                     if let Err(e) = written {
-                        return Some(Ended::Lost(e));
+                        ended = Some(Ended::Lost(e));
                     }
                 }
                 DriverOutput::SetBaud(baud) => {
@@ -202,11 +210,11 @@ impl Session<'_> {
                     let cleared = self.port.clear(ClearBuffer::Input);
                     self.line_setting("input flush", cleared);
                 }
-                DriverOutput::Reconnect(reason) => return Some(Ended::Reconnect(reason)),
+                DriverOutput::Reconnect(reason) => ended = Some(Ended::Reconnect(reason)),
                 other => (self.on_output)(other, self.driver.stats(), self.stats),
             }
         }
-        None
+        ended
     }
 
     fn line_setting(&mut self, what: &str, result: serialport::Result<()>) {
@@ -239,6 +247,18 @@ impl Session<'_> {
         std::thread::sleep(grace);
         tracing::info!(path = self.path, "{} device left quiet", self.driver.kind());
     }
+}
+
+/// Outputs the port carries out itself (the rest go to the node).
+fn is_port_action(output: &DriverOutput) -> bool {
+    matches!(
+        output,
+        DriverOutput::Write(_)
+            | DriverOutput::SetBaud(_)
+            | DriverOutput::SetDtr(_)
+            | DriverOutput::FlushInput
+            | DriverOutput::Reconnect(_)
+    )
 }
 
 fn is_quiet(e: &io::Error) -> bool {

@@ -98,9 +98,7 @@ pub fn run_emulator(
             CarryEnd::Done => break,
         }
     }
-    if let Some(link) = &line.link {
-        let _ = std::fs::remove_file(link);
-    }
+    remove_link(line);
     Ok(stats)
 }
 
@@ -146,9 +144,13 @@ fn carry(
     while !stop.load(Ordering::Relaxed) {
         let since_start = c.start.elapsed().as_secs_f64();
         if c.line.duration.is_some_and(|d| since_start >= d) {
+            remove_link(c.line);
             return Ok(CarryEnd::Done);
         }
         if c.unplug_at.is_some_and(|t| since_start >= t) {
+            // The name goes before the device: a host never opens a pty
+            // about to close (or, later, a stranger's reusing its number).
+            remove_link(c.line);
             return Ok(CarryEnd::Unplugged);
         }
         let now = c.plugged.elapsed().as_secs_f64();
@@ -181,7 +183,7 @@ fn carry(
         if stalled {
             stats.bytes_dropped += outbound.len() as u64;
         } else {
-            unsent.push(&outbound, stats);
+            unsent.push(&outbound, host, stats);
         }
         if host {
             // Garbled as they go out: at the wrong rate a UART reads noise.
@@ -194,13 +196,22 @@ fn carry(
         }
         std::thread::sleep(Duration::from_millis(2));
     }
+    remove_link(c.line);
     Ok(CarryEnd::Done)
+}
+
+fn remove_link(line: &EmulatorLine) {
+    if let Some(link) = &line.link {
+        let _ = std::fs::remove_file(link);
+    }
 }
 
 /// What the device has sent that no host has read yet: a USB device's (or a
 /// UART's) buffer, so that a host opening the port late, or again after a
-/// crash, first reads what the device kept sending meanwhile. Bounded: the
-/// oldest bytes go first, counted as dropped.
+/// crash, first reads what the device kept sending meanwhile. Bounded, the
+/// oldest bytes going first (counted as dropped): to a device's few KB while
+/// no host holds the port open, to [`HOST_BACKLOG`] while one does but reads
+/// slower than the device sends.
 #[derive(Default)]
 struct Unsent {
     bytes: std::collections::VecDeque<u8>,
@@ -210,10 +221,16 @@ struct Unsent {
 /// not read: a few KB, about two URG scans.
 const DEVICE_BUFFER: usize = 4 << 10;
 
+/// How far a reading host may fall behind (the pty's own buffer is full):
+/// many of the largest scans (a UTM-30LX multi-echo scan with intensity is
+/// under 30 KB), never unbounded.
+const HOST_BACKLOG: usize = 1 << 20;
+
 impl Unsent {
-    fn push(&mut self, bytes: &[u8], stats: &mut LineStats) {
+    fn push(&mut self, bytes: &[u8], host: bool, stats: &mut LineStats) {
         self.bytes.extend(bytes);
-        let excess = self.bytes.len().saturating_sub(DEVICE_BUFFER);
+        let bound = if host { HOST_BACKLOG } else { DEVICE_BUFFER };
+        let excess = self.bytes.len().saturating_sub(bound);
         self.bytes.drain(..excess);
         stats.bytes_dropped += excess as u64;
     }

@@ -22,7 +22,10 @@
 //!   ([`CandumpReplay`]) or an in-memory bus ([`memory_bus`]); [`CanSourceSpec`]
 //!   names one in text (`socketcan:can0`, `slcan:/dev/ttyACM0@115200:500000`,
 //!   `candump:run.log@max`);
-//! - [`sim`]: the simulated sensors' writers behind `shroud sensor-sim`.
+//! - [`run_device`]: a real sensor's driver (`shroud_core::ingest::{scip,
+//!   rplidar, benewake}`) on a serial port ([`DevicePortConfig`]);
+//! - [`sim`]: the simulated sensors' writers behind `shroud sensor-sim`, and
+//!   [`run_emulator`]: an emulated real device on a pseudo-terminal.
 
 mod backoff;
 mod can_reader;

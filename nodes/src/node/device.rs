@@ -7,10 +7,13 @@ use super::runtime::NodeContext;
 use super::scan_publisher::CloudOut;
 use crate::args::CloudArgs;
 use crate::ingest::{host_now, run_device, DevicePortConfig, PortStats};
+use crate::transport::unix_ns;
 use anyhow::Result;
 use shroud_core::ingest::assembly::{AssembledCloud, CloudAssembler, MountMotion};
-use shroud_core::ingest::device::{DeviceDriver, DeviceStats, DriverOutput, RangeScan};
-use shroud_core::message::{JointStateMessage, TopicKind};
+use shroud_core::ingest::device::{
+    DeviceDriver, DeviceState, DeviceStats, DriverOutput, RangeScan,
+};
+use shroud_core::message::{check_stamp_skew, JointStateMessage, TopicKind};
 use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TrySendError};
 use std::sync::Arc;
 use std::time::Duration;
@@ -21,8 +24,16 @@ const ASSEMBLY_QUEUE: usize = 256;
 
 enum Input {
     Scan(RangeScan),
-    Joint { unix_ns: u64, angle: f64 },
+    Joint {
+        unix_ns: u64,
+        angle: f64,
+    },
+    /// Publish the cloud being filled (the device went away).
+    Flush,
 }
+
+/// Labels that describe the node, not the device on its port.
+const KEPT_LABELS: [&str; 2] = ["device.kind", "device.state"];
 
 /// Runs `driver` on `port` and publishes its clouds until the node stops.
 pub(super) fn run_device_clouds(
@@ -41,24 +52,27 @@ pub(super) fn run_device_clouds(
     let assembler = CloudAssembler::new(config)?;
     let mut out = CloudOut::new(ctx, stream, driver.kind(), max_skew_ns)?;
     let (tx, rx) = sync_channel(ASSEMBLY_QUEUE);
-    let _joints = match joint {
-        Some(name) => Some(subscribe_mount_joint(
-            ctx,
-            &clouds.joints,
-            name,
-            tx.clone(),
-        )?),
-        None => None,
-    };
     ctx.metrics
         .set_label("device.kind".into(), driver.kind().into());
     std::thread::scope(|scope| -> Result<()> {
         scope.spawn(|| assemble(ctx, rx, assembler, &mut out));
-        let mut on_output = |output, device: &DeviceStats, port: &PortStats| {
-            report(ctx, output, &tx);
-            mirror_counters(ctx, device, port);
+        // The subscriber holds a sender too: it goes before the thread is
+        // waited for, so that the assembler sees the channel close.
+        let joints = joint
+            .map(|name| subscribe_mount_joint(ctx, &clouds.joints, name, tx.clone(), max_skew_ns))
+            .transpose();
+        let stats = match &joints {
+            Err(e) => Err(anyhow::anyhow!("{e:#}")),
+            Ok(_) => {
+                let mut on_output = |output, device: &DeviceStats, port: &PortStats| {
+                    report(ctx, output, &tx);
+                    mirror_counters(ctx, device, port);
+                };
+                run_device(port, driver, &mut on_output, ctx.stop_flag())
+                    .map_err(anyhow::Error::from)
+            }
         };
-        let stats = run_device(port, driver, &mut on_output, ctx.stop_flag());
+        drop(joints);
         drop(tx);
         let stats = stats?;
         mirror_counters(ctx, driver.stats(), &stats);
@@ -77,6 +91,13 @@ fn report(ctx: &NodeContext, output: DriverOutput, tx: &SyncSender<Input>) {
         DriverOutput::Scan(scan) => offer(ctx, tx, Input::Scan(scan)),
         DriverOutput::State(state) => {
             tracing::info!("device state: {state:?}");
+            match state {
+                // A new connection: what the last device said no longer holds.
+                DeviceState::Connecting => ctx.metrics.remove_labels("device.", &KEPT_LABELS),
+                // Its scans are not merged with the next connection's.
+                DeviceState::Disconnected => offer(ctx, tx, Input::Flush),
+                _ => {}
+            }
             ctx.metrics
                 .set_label("device.state".into(), state.name().into());
         }
@@ -126,8 +147,11 @@ fn mirror_counters(ctx: &NodeContext, device: &DeviceStats, port: &PortStats) {
     m.set_counter("bytes_read", device.bytes);
     m.set_counter("commands", device.commands);
     m.set_counter("handshakes", device.handshakes);
-    m.set_counter("dropped_malformed", device.total_errors());
-    for (kind, n) in device.error_counts().chain(device.invalid_reading_counts()) {
+    // The device's errors plus the joint states refused (counted apart).
+    let joints = m.counter("joint_samples_malformed");
+    m.set_counter("dropped_malformed", device.total_errors() + joints);
+    let all = device.error_counts().chain(device.invalid_reading_counts());
+    for (kind, n) in all.chain(device.note_counts()) {
         m.set_counter(kind, n);
     }
     m.set_counter("opens", port.opens);
@@ -151,6 +175,8 @@ fn assemble(
             Ok(Input::Joint { unix_ns, angle }) => {
                 assembler.push_joint(unix_ns, angle, &mut clouds)
             }
+            Ok(Input::Flush) => assembler.flush(&mut clouds),
+            Err(RecvTimeoutError::Timeout) if ctx.stopping() => break,
             Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => break,
         }
@@ -165,6 +191,13 @@ fn assemble(
             .set_counter("mount_angle_missing", s.mount_angle_missing);
         ctx.metrics
             .set_counter("joint_samples_refused", s.joint_samples_refused);
+    }
+    let unpublished = assembler.pending_points();
+    if unpublished > 0 {
+        // A window cut short by the stop: not a cloud the window promised.
+        ctx.metrics
+            .add("points_unpublished_at_stop", unpublished as u64);
+        tracing::info!("{unpublished} points of an unfinished cloud not published at stop");
     }
 }
 
@@ -181,12 +214,17 @@ fn publish(ctx: &NodeContext, out: &mut CloudOut<'_>, cloud: &AssembledCloud) {
         .set("cloud_points", cloud.cloud.points.len() as f64);
 }
 
-/// Subscribes to the joint states carrying the mount's angle.
+/// Subscribes to the joint states carrying the mount's angle. Their stamps
+/// place rays, so a stamp further than `max_skew_ns` from this node's clock
+/// is refused (`clock_skew`); undecodable messages count as
+/// `joint_samples_malformed`, messages without the joint as
+/// `joint_samples_foreign` (another unit's joints on the same topic).
 fn subscribe_mount_joint(
     ctx: &Arc<NodeContext>,
     topic: &str,
     joint: String,
     tx: SyncSender<Input>,
+    max_skew_ns: u64,
 ) -> Result<zenoh::pubsub::Subscriber<()>> {
     let key = ctx.key(TopicKind::Joints, topic)?;
     let node = ctx.clone();
@@ -195,20 +233,36 @@ fn subscribe_mount_joint(
         .declare_subscriber(key.clone())
         .callback(move |sample| {
             let bytes = sample.payload().to_bytes();
-            match JointStateMessage::from_bytes(&bytes) {
-                Ok(msg) => match msg.names.iter().position(|n| *n == joint) {
-                    Some(i) => offer(
-                        &node,
-                        &tx,
-                        Input::Joint {
-                            unix_ns: msg.stamp_ns,
-                            angle: msg.positions[i],
-                        },
-                    ),
-                    None => node.drop_malformed(&key, &format!("no joint named {joint:?}")),
-                },
-                Err(e) => node.drop_malformed(&key, &e),
+            let refuse = |counter: &'static str, why: &dyn std::fmt::Display| {
+                node.metrics.add(counter, 1);
+                // Once, then every 1000th: a topic at 200 Hz must not flood the log.
+                let n = node.metrics.counter(counter);
+                if n == 1 || n.is_multiple_of(1000) {
+                    tracing::warn!(key, "{counter} ({n} so far): {why}");
+                }
+            };
+            let msg = match JointStateMessage::from_bytes(&bytes) {
+                Ok(msg) => msg,
+                Err(e) => return refuse("joint_samples_malformed", &e),
+            };
+            let Some(i) = msg.names.iter().position(|n| *n == joint) else {
+                return refuse(
+                    "joint_samples_foreign",
+                    &format!("no joint named {joint:?}"),
+                );
+            };
+            if let Err(skew) = check_stamp_skew(msg.stamp_ns, unix_ns(), max_skew_ns) {
+                return refuse("clock_skew", &format!("joint state {skew}"));
             }
+            let angle = msg.positions[i];
+            offer(
+                &node,
+                &tx,
+                Input::Joint {
+                    unix_ns: msg.stamp_ns,
+                    angle,
+                },
+            );
         })
         .wait()
         .map_err(|e| anyhow::anyhow!("subscribe {topic}: {e}"))?;

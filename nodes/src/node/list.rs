@@ -74,6 +74,10 @@ pub fn run(args: NodeListArgs) -> Result<()> {
                         s.uptime_s,
                         counters.join(" ")
                     );
+                    // A device's state, health and identity, one per line.
+                    for (label, value) in &s.labels {
+                        println!("{:<16} {label} = {value}", "");
+                    }
                 }
                 None => println!(
                     "{name:<16} {:<10} {:>8} {:>9}  (no status yet)",

@@ -38,6 +38,11 @@ impl NodeMetrics {
         lock(&self.labels).insert(label, value);
     }
 
+    /// Removes the labels starting with `prefix`, except those in `keep`.
+    pub fn remove_labels(&self, prefix: &str, keep: &[&str]) {
+        lock(&self.labels).retain(|k, _| !k.starts_with(prefix) || keep.contains(&k.as_str()));
+    }
+
     pub fn label(&self, label: &str) -> Option<String> {
         lock(&self.labels).get(label).cloned()
     }

@@ -38,6 +38,7 @@ pub fn run_serial(args: SerialNodeArgs) -> Result<()> {
     // Every setting is checked before the node starts.
     let driver = args.device.driver()?;
     let assembly = args.clouds.assembly()?;
+    shroud_core::ingest::assembly::CloudAssembler::new(assembly.clone())?;
     let common = args.common.clone();
     match driver {
         None => {

@@ -184,6 +184,12 @@ fn a_cloud_per_sweep_is_cut_at_the_sweep_boundary_inside_a_scan() {
     assert_eq!(out[0].cloud.points.len(), 20);
     assert_eq!(out[0].scans, 4);
     assert_eq!(out[0].cloud.stamp_ns, T0 + 1_000 * MS);
+    // Its age counts from its first scan's arrival, not its last's.
+    assert_eq!(
+        out[0].first_received,
+        HostTime::new(1_000 * MS + 1_000, T0 + 1_000 * MS)
+    );
+    assert_eq!(out[0].last_received.unix_ns, T0 + 1_750 * MS);
 }
 
 #[test]

@@ -56,7 +56,8 @@ struct Session {
 /// absent and the driver asks for a reconnect. The original TFmini takes no
 /// commands: the driver only listens and streams from its first frame.
 ///
-/// Data frames before the plan completes are dropped (`frame_while_configuring`):
+/// Data frames before the plan completes are dropped (noted as
+/// `frame_while_configuring`):
 /// their unit and rate are not settled yet. Once streaming, each data frame,
 /// valid or not, is one [`RangeScan`] of one ray (angle 0, offset 0,
 /// intensity = strength). Invalid readings are `NaN` rays, counted as
@@ -204,7 +205,7 @@ impl BenewakeDriver {
                 self.start_streaming(now, out);
                 self.deliver(frame, now, out);
             }
-            _ => self.stats.count("frame_while_configuring"),
+            _ => self.stats.note("frame_while_configuring"),
         }
     }
 
@@ -331,11 +332,27 @@ impl DeviceDriver for BenewakeDriver {
         }
         let mut decoded = std::mem::take(&mut self.decoded);
         self.decoder.feed(bytes, &mut decoded);
+        // Several frames in one read arrived one after another on the wire:
+        // each earlier one is back-dated by the frames that followed it (the
+        // last ends about when the read returned).
+        let frames = decoded
+            .iter()
+            .filter(|d| matches!(d, Ok(Packet::Data(_))))
+            .count() as u64;
+        let mut later = frames;
+        let per_frame = frame_transmission_ns(self.config.baud);
         for item in decoded.drain(..) {
             if self.state == DeviceState::Disconnected {
                 break;
             }
-            self.on_packet(item, now, out);
+            let mut at = now;
+            if matches!(item, Ok(Packet::Data(_))) {
+                later = later.saturating_sub(1);
+                let back = later.saturating_mul(per_frame);
+                at.unix_ns = at.unix_ns.saturating_sub(back);
+                at.monotonic_ns = at.monotonic_ns.saturating_sub(back);
+            }
+            self.on_packet(item, at, out);
         }
         self.decoded = decoded;
     }

@@ -6,9 +6,10 @@
 //!
 //! Counters the driver keeps in its
 //! [`DeviceStats`](crate::ingest::device::DeviceStats): `bad_checksum`,
-//! `garbage`, `partial_frame` (decoder); `frame_while_configuring`,
-//! `command_unanswered`, `unexpected_reply`, `save_failed`,
-//! `trigger_unanswered`, `timeout` (driver); and, as invalid readings
+//! `garbage`, `partial_frame` (decoder); `command_unanswered`,
+//! `unexpected_reply`, `save_failed`, `trigger_unanswered`, `timeout`
+//! (driver); as an expected event (`DeviceStats::notes`),
+//! `frame_while_configuring`; and, as invalid readings
 //! (delivered as `NaN` rays, not errors), `weak_return`, `saturated`,
 //! `out_of_range`.
 

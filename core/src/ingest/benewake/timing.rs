@@ -15,7 +15,8 @@ const SILENT_PERIODS: u64 = 10;
 /// 115200). 0 when `baud` is 0.
 ///
 /// This is the best the driver can do: the frame carries no device time, so a
-/// reading is stamped at the arrival of its last byte minus this. The device's
+/// reading is stamped at the arrival of its last byte minus this (and minus
+/// this again for each frame that followed it in the same read). The device's
 /// own integration and averaging time before it sends (TF-Luna averages 500 Hz
 /// measurements down to its output rate, manual §5.5) is not modelled, nor is
 /// the host's read latency.

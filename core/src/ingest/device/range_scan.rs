@@ -39,7 +39,11 @@ pub struct RangeScan {
     /// from the device's clock mapped to the host's (or back-dated from the
     /// arrival of its bytes by the device's timing model).
     pub stamp_ns: u64,
-    /// When the scan's last byte was handed to the driver.
+    /// When the scan's last byte was handed to the driver, or earlier (a
+    /// driver that learns a scan is complete only from later bytes, as an
+    /// RPLIDAR from the next capsule, dates it from its last sample): a
+    /// cloud's age in shroud counts from here, so this is never later than
+    /// the data's arrival.
     pub received: HostTime,
     /// Rays in the order the device measured them.
     pub rays: Vec<Ray>,

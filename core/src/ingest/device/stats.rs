@@ -25,6 +25,10 @@ pub struct DeviceStats {
     /// of range), by kind: not errors (the input was sound), delivered as
     /// `NaN` rays.
     invalid_readings: BTreeMap<&'static str, u64>,
+    /// Input dropped by design, not because it was wrong (the partial first
+    /// revolution after a start, frames that arrive while configuring, an
+    /// optional query a model does not answer), by kind.
+    notes: BTreeMap<&'static str, u64>,
 }
 
 impl DeviceStats {
@@ -65,6 +69,21 @@ impl DeviceStats {
         self.invalid_readings.iter().map(|(k, v)| (*k, *v))
     }
 
+    /// Counts one expected event of `kind` (see the field's doc).
+    pub fn note(&mut self, kind: &'static str) {
+        *self.notes.entry(kind).or_default() += 1;
+    }
+
+    /// Expected events of `kind` so far.
+    pub fn notes(&self, kind: &str) -> u64 {
+        self.notes.get(kind).copied().unwrap_or(0)
+    }
+
+    /// Every non-zero expected-event counter, by name.
+    pub fn note_counts(&self) -> impl Iterator<Item = (&'static str, u64)> + '_ {
+        self.notes.iter().map(|(k, v)| (*k, *v))
+    }
+
     /// All errors of every kind.
     pub fn total_errors(&self) -> u64 {
         self.errors.values().sum()
@@ -78,7 +97,8 @@ impl fmt::Display for DeviceStats {
             "{} scans, {} bytes, {} commands, {} handshakes, {} reconnects",
             self.scans, self.bytes, self.commands, self.handshakes, self.reconnects
         )?;
-        for (kind, n) in self.error_counts().chain(self.invalid_reading_counts()) {
+        let all = self.error_counts().chain(self.invalid_reading_counts());
+        for (kind, n) in all.chain(self.note_counts()) {
             write!(f, ", {kind} {n}")?;
         }
         Ok(())

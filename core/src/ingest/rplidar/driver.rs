@@ -391,10 +391,21 @@ impl RplidarDriver {
         self.phase = Phase::Streaming {
             last_scan_ns: now.monotonic_ns,
         };
+        // A revolution is known complete only at the next capsule (or after
+        // the confirming nodes): its age counts from its last sample's time,
+        // back-dated like every sample from its own packet's arrival, not
+        // from now (never younger than it is).
+        let last_offset = revolution.rays.last().map_or(0, |r| u64::from(r.offset_ns));
+        let last_sample = revolution.stamp_ns.saturating_add(last_offset);
+        let lag = now.unix_ns.saturating_sub(last_sample);
+        let received = HostTime::new(
+            now.monotonic_ns.saturating_sub(lag),
+            now.unix_ns.saturating_sub(lag),
+        );
         out.push(DriverOutput::Scan(RangeScan {
             sequence,
             stamp_ns: revolution.stamp_ns,
-            received: now,
+            received,
             rays: revolution.rays,
         }));
     }
@@ -407,7 +418,7 @@ impl RplidarDriver {
         out: &mut Vec<DriverOutput>,
     ) {
         if query.optional() {
-            self.stats.count("optional_timeout");
+            self.stats.note("optional_timeout");
             if let Query::Conf(q) = query {
                 self.conf_unanswered(q);
             }

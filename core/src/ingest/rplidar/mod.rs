@@ -28,10 +28,12 @@
 //! boundary undetectably (revolutions then merge or split, without holes).
 //!
 //! Errors counted (`DeviceStats::errors`): `resync`, `bad_checksum`,
-//! `capsule_gap`, `incomplete_scan`, `partial_revolution`, `oversize_scan`,
-//! `stray_bytes`, `bad_descriptor`, `unexpected_response`, `bad_reply`,
-//! `timeout`, `optional_timeout`, `stream_timeout`, `health_warning`,
-//! `health_error`, `unsupported_scan_mode`, `too_many_scan_modes`.
+//! `capsule_gap`, `incomplete_scan`, `oversize_scan`, `stray_bytes`,
+//! `bad_descriptor`, `unexpected_response`, `bad_reply`, `timeout`,
+//! `stream_timeout`, `health_warning`, `health_error`,
+//! `unsupported_scan_mode`, `too_many_scan_modes`. Expected events
+//! (`DeviceStats::notes`): `partial_revolution` (the first turn after a start
+//! is discarded), `optional_timeout` (a query the model does not answer).
 //!
 //! [`DeviceDriver`]: crate::ingest::device::DeviceDriver
 

@@ -93,7 +93,7 @@ impl RevolutionAssembler {
                 let held = self.held.take();
                 let discarded = match self.phase {
                     Phase::Collecting => {
-                        stats.count("partial_revolution");
+                        stats.note("partial_revolution");
                         false
                     }
                     Phase::Waiting { discarded, .. } => discarded,
@@ -152,7 +152,7 @@ impl RevolutionAssembler {
                 true,
             ) => {
                 if after_start && discarded {
-                    stats.count("partial_revolution");
+                    stats.note("partial_revolution");
                 }
                 self.begin(sample);
                 None

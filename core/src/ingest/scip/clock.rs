@@ -84,8 +84,14 @@ impl ClockSync {
     }
 }
 
-/// The furthest a mapped first-ray stamp may lie before its scan's arrival.
-pub const MAX_STAMP_AGE_NS: u64 = 1_000_000_000;
+/// How much later than the sweep and the line's transfer time a scan may
+/// arrive (USB latency, the host's scheduling) before its mapped stamp is
+/// taken for a clock gone wrong (a drifted or reset sensor clock).
+pub const MAX_STAMP_LAG_NS: u64 = 100_000_000;
+
+/// How far a mapped first ray may lie after `arrival - sweep`: the sensor's
+/// 1 ms stamp resolution and the rear-centre assumption's slack.
+pub const MAX_STAMP_LEAD_NS: u64 = 5_000_000;
 
 /// Stamps scans on the host's wall clock.
 #[derive(Debug, Clone, Default)]
@@ -103,6 +109,8 @@ pub struct ScanTiming {
     pub first_ray_delay_ns: u64,
     /// From the first ray to the last.
     pub sweep_ns: u64,
+    /// The reply's time on the line (0 over USB).
+    pub transfer_ns: u64,
     /// When the scan's last byte arrived.
     pub arrival: HostTime,
 }
@@ -120,19 +128,24 @@ impl ScanStamper {
     }
 
     /// The first ray's wall-clock time: sensor time + offset + first-ray
-    /// delay. A mapped stamp later than the arrival or more than
-    /// [`MAX_STAMP_AGE_NS`] before it counts `clock_mismatch` and switches to
-    /// arrival stamps (arrival - sweep, i.e. the last ray at the arrival,
-    /// transfer time ignored) until the next [`set_offset`](Self::set_offset).
+    /// delay. The last ray cannot come after the scan's arrival, nor much
+    /// before it: a mapped first ray later than `arrival - sweep +`
+    /// [`MAX_STAMP_LEAD_NS`] or earlier than `arrival - sweep - transfer -`
+    /// [`MAX_STAMP_LAG_NS`] counts `clock_mismatch` and switches to arrival
+    /// stamps (arrival - sweep - transfer) until the next
+    /// [`set_offset`](Self::set_offset).
     pub fn stamp(&mut self, timing: &ScanTiming, stats: &mut DeviceStats) -> u64 {
         if let Some(mapped) = self.mapped(timing) {
-            if self.plausible(mapped, timing.arrival) {
+            if self.plausible(mapped, timing) {
                 return mapped as u64;
             }
             stats.count("clock_mismatch");
             self.fallen_back = true;
         }
-        timing.arrival.unix_ns.saturating_sub(timing.sweep_ns)
+        timing
+            .arrival
+            .unix_ns
+            .saturating_sub(timing.sweep_ns.saturating_add(timing.transfer_ns))
     }
 
     fn mapped(&self, timing: &ScanTiming) -> Option<i128> {
@@ -144,8 +157,10 @@ impl ScanStamper {
         )
     }
 
-    fn plausible(&self, mapped: i128, arrival: HostTime) -> bool {
-        let arrival = i128::from(arrival.unix_ns);
-        mapped >= 0 && mapped <= arrival && mapped >= arrival - i128::from(MAX_STAMP_AGE_NS)
+    fn plausible(&self, mapped: i128, timing: &ScanTiming) -> bool {
+        let expected = i128::from(timing.arrival.unix_ns) - i128::from(timing.sweep_ns);
+        let latest = expected + i128::from(MAX_STAMP_LEAD_NS);
+        let earliest = expected - i128::from(timing.transfer_ns) - i128::from(MAX_STAMP_LAG_NS);
+        mapped >= 0 && mapped <= latest && mapped >= earliest
     }
 }

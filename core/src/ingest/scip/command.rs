@@ -58,7 +58,9 @@ pub enum TimeMode {
 }
 
 /// The measurement commands (spec §8.1, §8.2; `ME`/`GE` are the SCIP 2.x
-/// range-plus-intensity variants, urg_c `urg_start_measurement()`).
+/// range-plus-intensity variants, `ND`/`HD`/`NE`/`HE` the multi-echo ones:
+/// urg_c `urg_start_measurement()` sends `M`/`N` for streamed and `G`/`H` for
+/// one-scan requests, second letter `D` ranges, `E` ranges and intensity).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ScanKind {
     /// Streamed ranges, 3 characters each.
@@ -73,6 +75,16 @@ pub enum ScanKind {
     Gs,
     /// One scan of range and intensity pairs, 3 + 3 characters.
     Ge,
+    /// Streamed multi-echo ranges: up to 3 echoes per step, 3 characters
+    /// each, the extra ones prefixed `&`.
+    Nd,
+    /// Streamed multi-echo range and intensity pairs, 3 + 3 characters per
+    /// echo, the extra echoes prefixed `&`.
+    Ne,
+    /// One scan of multi-echo ranges (as `ND`).
+    Hd,
+    /// One scan of multi-echo range and intensity pairs (as `NE`).
+    He,
 }
 
 impl ScanKind {
@@ -85,12 +97,17 @@ impl ScanKind {
             Self::Gd => "GD",
             Self::Gs => "GS",
             Self::Ge => "GE",
+            Self::Nd => "ND",
+            Self::Ne => "NE",
+            Self::Hd => "HD",
+            Self::He => "HE",
         }
     }
 
-    /// Whether the sensor keeps sending scans (`M*`) rather than one (`G*`).
+    /// Whether the sensor keeps sending scans (`M*`, `N*`) rather than one
+    /// (`G*`, `H*`).
     pub fn is_streamed(self) -> bool {
-        matches!(self, Self::Md | Self::Ms | Self::Me)
+        matches!(self, Self::Md | Self::Ms | Self::Me | Self::Nd | Self::Ne)
     }
 
     /// Characters per range value (spec §6: `*S` commands use 2, others 3).
@@ -101,20 +118,55 @@ impl ScanKind {
         }
     }
 
-    /// Whether every step carries an intensity after its range.
+    /// Whether every echo carries an intensity after its range.
     pub fn has_intensity(self) -> bool {
-        matches!(self, Self::Me | Self::Ge)
+        matches!(self, Self::Me | Self::Ge | Self::Ne | Self::He)
     }
 
-    /// The same command without intensity (`ME` to `MD`, `GE` to `GD`).
+    /// Whether a step may carry more than one echo (`N*`, `H*`; urg_c
+    /// `receive_length_data()`).
+    pub fn is_multiecho(self) -> bool {
+        matches!(self, Self::Nd | Self::Ne | Self::Hd | Self::He)
+    }
+
+    /// The same command without intensity (`ME` to `MD`, `GE` to `GD`, `NE`
+    /// to `ND`, `HE` to `HD`).
     pub fn without_intensity(self) -> Self {
         match self {
             Self::Me => Self::Md,
             Self::Ge => Self::Gd,
+            Self::Ne => Self::Nd,
+            Self::He => Self::Hd,
             other => other,
         }
     }
+
+    /// The same command with one echo per step (`ND` to `MD`, `NE` to `ME`,
+    /// `HD` to `GD`, `HE` to `GE`).
+    pub fn without_multiecho(self) -> Self {
+        match self {
+            Self::Nd => Self::Md,
+            Self::Ne => Self::Me,
+            Self::Hd => Self::Gd,
+            Self::He => Self::Ge,
+            other => other,
+        }
+    }
+
+    /// The most characters one step's data can take: a value group per echo
+    /// and a `&` before each extra echo.
+    pub fn max_step_chars(self) -> usize {
+        let group = self.range_width() * if self.has_intensity() { 2 } else { 1 };
+        if self.is_multiecho() {
+            MAX_ECHOES * group + (MAX_ECHOES - 1)
+        } else {
+            group
+        }
+    }
 }
+
+/// The most echoes a multi-echo step carries (urg_c `URG_MAX_ECHO`).
+pub const MAX_ECHOES: usize = 3;
 
 /// A measurement request: which steps, merged how, how often.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -127,9 +179,9 @@ pub struct ScanRequest {
     /// Adjacent steps merged into one value (2 digits; the sensor reports the
     /// cluster's minimum, spec §8.1).
     pub cluster: u8,
-    /// Scans skipped between two sent scans (`M*` only, 1 digit).
+    /// Scans skipped between two sent scans (`M*`/`N*` only, 1 digit).
     pub interval: u8,
-    /// Scans to send, `0` = until `QT` (`M*` only, 2 digits).
+    /// Scans to send, `0` = until `QT` (`M*`/`N*` only, 2 digits).
     pub scans: u8,
 }
 
@@ -150,15 +202,19 @@ impl ScanRequest {
         Ok(())
     }
 
-    /// How many values a scan carries: the steps divided by the cluster count,
-    /// rounded up (a last partial cluster still yields a value).
+    /// How many values a scan carries (for multi-echo commands: how many
+    /// first echoes): the steps divided by the cluster count, rounded up (a
+    /// last partial cluster still yields a value).
     pub fn value_count(&self) -> usize {
         let steps = usize::from(self.end.saturating_sub(self.start)) + 1;
         steps.div_ceil(usize::from(self.cluster.max(1)))
     }
 
-    /// The command text without tag or terminator: `MD` start(4) end(4)
-    /// cluster(2) interval(1) scans(2), or `GD` start(4) end(4) cluster(2).
+    /// The command text without tag or terminator: `MD`/`MS`/`ME`/`ND`/`NE`
+    /// start(4) end(4) cluster(2) interval(1) scans(2), or
+    /// `GD`/`GS`/`GE`/`HD`/`HE` start(4) end(4) cluster(2) (urg_c
+    /// `send_distance_command()`; `parse_distance_echoback()` expects 15- and
+    /// 12-character echoes).
     fn text(&self) -> String {
         let base = format!(
             "{}{:04}{:04}{:02}",
@@ -176,7 +232,7 @@ impl ScanRequest {
 
     /// Whether `echo` is this request's echo. A streamed scan's echo carries
     /// the remaining scan count instead of the requested one (spec §8.1), so
-    /// for `M*` the last two characters only have to be digits.
+    /// for `M*`/`N*` the last two characters only have to be digits.
     pub fn matches_echo(&self, echo: &[u8], tag: Option<&Tag>) -> bool {
         let expected = with_tag(self.text(), tag).into_bytes();
         if !self.kind.is_streamed() || expected.len() != echo.len() {
@@ -239,7 +295,7 @@ pub enum Command {
     SetBitRate(u32),
     /// `SCIP2.0`: switch a SCIP 1.1 sensor to SCIP 2.0 (spec §2).
     Scip2,
-    /// `MD`/`MS`/`ME`/`GD`/`GS`/`GE`.
+    /// `MD`/`MS`/`ME`/`GD`/`GS`/`GE`/`ND`/`NE`/`HD`/`HE`.
     Scan(ScanRequest),
 }
 

@@ -44,6 +44,13 @@ pub enum ScanCommand {
     /// `GD`: one scan per request, polled (the driver sends the next `GD` as
     /// soon as a reply is in).
     Gd,
+    /// `ND`: streamed multi-echo ranges, up to 3 echoes per step, each its
+    /// own ray (`NE` with `intensity`). Falls back to `MD` (`ME`) when the
+    /// sensor rejects it.
+    Nd,
+    /// `HD`: one multi-echo scan per request, polled like `GD` (`HE` with
+    /// `intensity`). Falls back to `GD` (`GE`) when the sensor rejects it.
+    Hd,
 }
 
 /// Configuration of a [`ScipDriver`](super::ScipDriver).
@@ -61,15 +68,16 @@ pub struct ScipConfig {
     pub start_step: Option<u16>,
     /// Last step; `None` = `AMAX` from `PP`. Clamped to `start..=AMAX`.
     pub end_step: Option<u16>,
-    /// Adjacent steps merged per ray, clamped to 1..=99. Default 1.
+    /// Adjacent steps merged per ray (per echo for `ND`/`HD`), clamped to
+    /// 1..=99. Default 1.
     pub cluster: u8,
-    /// Scans skipped between sent scans (`MD`/`MS`/`ME`), clamped to 0..=9.
-    /// Default 0.
+    /// Scans skipped between sent scans (`MD`/`MS`/`ME`/`ND`/`NE`), clamped
+    /// to 0..=9. Default 0.
     pub interval: u8,
-    /// Ask for intensity: `MD` becomes `ME`, `GD` becomes `GE`. When the
-    /// sensor rejects it the driver falls back, counts
-    /// `intensity_unsupported` and says so in its Identity; it asks again on
-    /// every connect. Ignored for `MS`. Default `false`.
+    /// Ask for intensity: `MD` becomes `ME`, `GD` becomes `GE`, `ND` becomes
+    /// `NE`, `HD` becomes `HE`. When the sensor rejects it the driver falls
+    /// back, counts `intensity_unsupported` and says so in its Identity; it
+    /// asks again on every connect. Ignored for `MS`. Default `false`.
     pub intensity: bool,
     /// How long to wait for the reply to a command. Default 1 s.
     pub reply_timeout: Duration,
@@ -109,6 +117,10 @@ impl ScipConfig {
             (ScanCommand::Ms, _) => ScanKind::Ms,
             (ScanCommand::Gd, false) => ScanKind::Gd,
             (ScanCommand::Gd, true) => ScanKind::Ge,
+            (ScanCommand::Nd, false) => ScanKind::Nd,
+            (ScanCommand::Nd, true) => ScanKind::Ne,
+            (ScanCommand::Hd, false) => ScanKind::Hd,
+            (ScanCommand::Hd, true) => ScanKind::He,
         }
     }
 

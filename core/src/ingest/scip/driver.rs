@@ -57,13 +57,13 @@ pub(super) enum Phase {
     TimeRead { done: u8 },
     /// `TM2` sent after the round trips.
     TimeLeave,
-    /// `BM` sent (before `GD`/`GE`).
+    /// `BM` sent (before `GD`/`GE`/`HD`/`HE`).
     LaserOn,
-    /// `MD`/`MS`/`ME` sent, waiting for its `00` acknowledgement.
+    /// `MD`/`MS`/`ME`/`ND`/`NE` sent, waiting for its `00` acknowledgement.
     StreamStart,
     /// Receiving streamed scans.
     Streaming,
-    /// `GD`/`GS`/`GE` sent, waiting for the scan.
+    /// `GD`/`GS`/`GE`/`HD`/`HE` sent, waiting for the scan.
     Polling,
     /// `RB` number `sent` written.
     Reboot { sent: u8 },
@@ -82,6 +82,8 @@ pub(super) struct Session {
     pub plan: Option<ScanPlan>,
     /// Set when the sensor rejected the intensity command.
     pub intensity_note: Option<String>,
+    /// Set when the sensor rejected the multi-echo command.
+    pub multiecho_note: Option<String>,
     pub clock: DeviceClock,
     pub sync: ClockSync,
     pub stamper: ScanStamper,
@@ -103,16 +105,21 @@ pub(super) struct Session {
 /// the `QT` reply is in (at most 3 times). Then `SS` (RS-232 target rate),
 /// `VV`, `PP`, `II` (→ [`DriverOutput::Health`] from `STAT`), `TM0`, `TM1` x
 /// `tm_round_trips`, `TM2`, `BM` for polled commands, and the measurement
-/// command; when it runs, [`DriverOutput::Identity`] carries every `VV`/`PP`/`II`
-/// pair plus `scan_command`, `steps`, `cluster`, `intensity`, `clock_sync` and
-/// (RS-232) `baud`. A sensor that does not answer a handshake command within
+/// command (`MD`, `MS`, `ME`, `ND`, `NE` streamed; `GD`, `GE`, `HD`, `HE`
+/// polled). A refused multi-echo command falls back to its single-echo twin,
+/// a refused intensity command to its range-only twin (each counted, and
+/// asked again on the next connect). When it runs,
+/// [`DriverOutput::Identity`] carries every `VV`/`PP`/`II` pair plus
+/// `scan_command`, `steps`, `cluster`, `intensity`, `multiecho`, `clock_sync`
+/// and (RS-232) `baud`. A sensor that does not answer a handshake command within
 /// `reply_timeout`, or a stream without a delivered scan for the stream
 /// timeout, ends in [`DriverOutput::Reconnect`] naming what was awaited; `0L`
 /// or 3 hardware-trouble replies in a row reboot the sensor (`RB` twice) and
 /// then reconnect. Error kinds counted: `bad_checksum`, `malformed_reply`,
 /// `unexpected_echo`, `oversize_line`, `oversize_reply`, `incomplete_scan`,
-/// `garbage`, `timeout`, `clock_mismatch`, `intensity_unsupported`,
-/// `device_resumed` and `device_error_*` by status class (see
+/// `malformed_multiecho`, `garbage`, `timeout`, `clock_mismatch`,
+/// `intensity_unsupported`, `multiecho_unsupported`, `device_resumed` and
+/// `device_error_*` by status class (see
 /// [`StatusClass::error_kind`](super::StatusClass::error_kind)).
 #[derive(Debug)]
 pub struct ScipDriver {

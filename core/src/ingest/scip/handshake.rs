@@ -337,8 +337,10 @@ impl ScipDriver {
         }
     }
 
-    /// Starts the configured measurement: `MD`/`MS`/`ME` directly (they turn
-    /// the laser on, spec §8.1), `GD`/`GS`/`GE` after `BM` (spec §8.2).
+    /// Starts the configured measurement: `MD`/`MS`/`ME`/`ND`/`NE` directly
+    /// (they turn the laser on, spec §8.1), `GD`/`GS`/`GE`/`HD`/`HE` after
+    /// `BM` (spec §8.2; urg_c `send_distance_command()` sends `BM` before a
+    /// single `G*`/`H*` scan).
     pub(super) fn start_measurement(&mut self, now: HostTime, out: &mut Vec<DriverOutput>) {
         let Some(geometry) = self.session.geometry else {
             return self.reconnect("no PP geometry".to_owned(), out);
@@ -411,10 +413,10 @@ impl ScipDriver {
     }
 }
 
-/// About how many bytes one scan reply takes: data characters plus one sum
-/// and LF per 64 characters, plus echo, status and timestamp lines.
+/// About how many bytes one scan reply takes: data characters (multi-echo:
+/// as if every step had 3 echoes) plus one sum and LF per 64 characters, plus
+/// echo, status and timestamp lines.
 fn reply_bytes(request: &ScanRequest) -> f64 {
-    let group = request.kind.range_width() * if request.kind.has_intensity() { 2 } else { 1 };
-    let data = (request.value_count() * group) as f64;
+    let data = (request.value_count() * request.kind.max_step_chars()) as f64;
     data * 66.0 / 64.0 + 40.0
 }

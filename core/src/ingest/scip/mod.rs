@@ -1,8 +1,15 @@
 //! Hokuyo SCIP 2.0 laser range finders (URG-04LX, and other SCIP 2.0 sensors
 //! over USB CDC-ACM or RS-232), sans-I/O: codec pieces (character encoding,
 //! line sums, commands, line splitting, reply assembly, parameter replies,
-//! scan data), the sensor clock, and [`ScipDriver`], the state machine that
-//! probes, configures and streams.
+//! scan data, multi-echo data), the sensor clock, and [`ScipDriver`], the
+//! state machine that probes, configures and streams.
+//!
+//! Measurement commands: `MD`/`MS`/`ME` streamed and `GD`/`GE` polled
+//! (ranges, 2-character ranges, ranges with intensity), and the multi-echo
+//! `ND`/`NE` streamed and `HD`/`HE` polled (ranges, ranges with intensity;
+//! up to 3 echoes per step, each after the first prefixed `&` in the data,
+//! urg_c `receive_length_data()`). A refused multi-echo command falls back to
+//! `MD`/`ME`/`GD`/`GE`, a refused intensity command to `MD`/`GD`.
 //!
 //! Sources: Hokuyo "Communication Protocol Specification for SCIP2.0"
 //! (C-42-03320B, cited as "spec §n"), ros-drivers/urg_c `current/src/*.c` at
@@ -13,9 +20,12 @@
 //! Conventions (REP-103): a ray's angle is `(step - AFRT) * 2π / ARES`
 //! radians, counter-clockwise positive from the sensor's front, since the
 //! beam turns counter-clockwise seen from above (spec §5). With cluster `c`,
-//! ray `i` carries the angle and time of step `start + i*c`, the first step
-//! of its cluster. Ranges below `DMIN` (error codes) or above `DMAX` are NaN
-//! rays, kept. A ray's `offset_ns` is its step distance from the first ray
+//! value `i` of a scan carries the angle and time of step `start + i*c`, the
+//! first step of its cluster; a value is one ray, except that every echo of a
+//! multi-echo value is a ray of its own with that angle and time, first echo
+//! first (so a multi-echo scan has between one and three rays per value).
+//! Ranges below `DMIN` (error codes) or above `DMAX` are NaN rays, kept
+//! (multi-echo included: no echo is dropped, none is invented). A ray's `offset_ns` is its step distance from the first ray
 //! times 60e9 / (`SCAN` * `ARES`) ns. A scan's `stamp_ns` is the first ray's
 //! time: the sensor timestamp mapped through the `TM1` clock offset, plus the
 //! time the beam takes from the rear centre (the instant the timestamp is
@@ -25,6 +35,7 @@ mod clock;
 mod command;
 mod config;
 mod driver;
+mod echoes;
 mod encoding;
 mod handshake;
 mod line;
@@ -39,10 +50,13 @@ mod sum;
 #[cfg(test)]
 mod tests;
 
-pub use clock::{ClockSync, DeviceClock, ScanStamper, ScanTiming, MAX_STAMP_AGE_NS, WRAP_MS};
-pub use command::{Command, CommandError, ScanKind, ScanRequest, Tag, TimeMode};
+pub use clock::{
+    ClockSync, DeviceClock, ScanStamper, ScanTiming, MAX_STAMP_LAG_NS, MAX_STAMP_LEAD_NS, WRAP_MS,
+};
+pub use command::{Command, CommandError, ScanKind, ScanRequest, Tag, TimeMode, MAX_ECHOES};
 pub use config::{Link, ScanCommand, ScipConfig};
 pub use driver::ScipDriver;
+pub use echoes::ECHO_MARK;
 pub use encoding::{decode, encode};
 pub use line::{LineEvent, LineSplitter, MAX_LINE_LEN};
 pub use params::{health, parse_pairs, ParamError, ScipGeometry};

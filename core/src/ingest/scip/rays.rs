@@ -1,8 +1,9 @@
 //! Turns decoded scan values into rays: angles, ranges in metres, per-ray
 //! times. Everything that depends only on the geometry and the request is
-//! computed once per stream ([`ScanPlan`]).
+//! computed once per stream ([`ScanPlan`]). Every echo of a multi-echo step
+//! becomes its own ray with the step's angle and time.
 
-use super::command::ScanRequest;
+use super::command::{ScanRequest, MAX_ECHOES};
 use super::params::ScipGeometry;
 use super::scan_data::ScanData;
 use crate::ingest::device::Ray;
@@ -46,7 +47,8 @@ impl ScanPlan {
         }
     }
 
-    /// How many rays a scan has.
+    /// How many steps (clusters) a scan has: its rays, or for multi-echo
+    /// scans its first echoes.
     pub fn ray_count(&self) -> usize {
         self.angles.len()
     }
@@ -64,30 +66,55 @@ impl ScanPlan {
 
     /// The rays of `data`, or `None` when it has the wrong number of values
     /// (the decoder already checks this; a scan is never delivered with a
-    /// hole). Ranges below `DMIN` (error codes) or above `DMAX` become NaN.
+    /// hole). Each value is a ray; a multi-echo step's echoes follow each
+    /// other with the step's angle and offset, first echo first. Ranges below
+    /// `DMIN` (error codes) or above `DMAX` become NaN.
     pub fn rays(&self, data: &ScanData) -> Option<Vec<Ray>> {
-        if data.ranges.len() != self.ray_count() {
-            return None;
-        }
+        let slots = self.slot_of_values(data)?;
         if data
             .intensities
             .as_ref()
-            .is_some_and(|i| i.len() != self.ray_count())
+            .is_some_and(|i| i.len() != data.ranges.len())
         {
             return None;
         }
-        let rays = (0..self.ray_count()).filter_map(|i| {
-            Some(Ray {
-                angle: *self.angles.get(i)?,
-                range: self.metres(*data.ranges.get(i)?),
-                intensity: match &data.intensities {
-                    Some(values) => Some(*values.get(i)? as f32),
-                    None => None,
-                },
-                offset_ns: *self.offsets_ns.get(i)?,
-            })
-        });
-        Some(rays.collect())
+        let rays = slots
+            .iter()
+            .zip(&data.ranges)
+            .enumerate()
+            .map(|(k, (&slot, &mm))| {
+                Some(Ray {
+                    angle: *self.angles.get(slot)?,
+                    range: self.metres(mm),
+                    intensity: match &data.intensities {
+                        Some(values) => Some(*values.get(k)? as f32),
+                        None => None,
+                    },
+                    offset_ns: *self.offsets_ns.get(slot)?,
+                })
+            });
+        rays.collect()
+    }
+
+    /// The step slot of every value of `data`, or `None` when the counts
+    /// disagree with the plan (or a step claims 0 or more than 3 echoes).
+    fn slot_of_values(&self, data: &ScanData) -> Option<Vec<usize>> {
+        let echo_range = 1..=MAX_ECHOES as u8;
+        let slots: Vec<usize> = match &data.echoes {
+            None if data.ranges.len() == self.ray_count() => (0..self.ray_count()).collect(),
+            Some(counts)
+                if counts.len() == self.ray_count()
+                    && counts.iter().all(|n| echo_range.contains(n)) =>
+            {
+                counts
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(slot, &n)| std::iter::repeat_n(slot, usize::from(n)))
+                    .collect()
+            }
+            _ => return None,
+        };
+        (slots.len() == data.ranges.len()).then_some(slots)
     }
 
     fn metres(&self, mm: u32) -> f32 {

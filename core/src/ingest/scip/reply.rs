@@ -4,10 +4,12 @@
 
 use super::line::LineEvent;
 
-/// The most lines a reply may hold after its echo: an `ME` scan of 9999
-/// steps is 3 + 3 characters per step in 64-character lines (938 lines) plus
-/// status and timestamp.
-pub const MAX_REPLY_LINES: usize = 1024;
+/// The most lines a reply may hold after its echo: an `NE` scan of 10000
+/// steps (0..=9999) with 3 echoes each is 3 x (3 + 3) characters and two `&`
+/// per step, 200000 characters in 64-character lines (3125 lines), plus
+/// status and timestamp. At most 3200 lines of at most 256 bytes: the buffer
+/// stays under 1 MB.
+pub const MAX_REPLY_LINES: usize = 3200;
 
 /// One reply as received; nothing is checked yet.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]

@@ -8,6 +8,7 @@
 use thiserror::Error;
 
 use super::command::ScanRequest;
+use super::echoes::split_echoes;
 use super::encoding::decode;
 use super::sum::strip_sum;
 
@@ -27,29 +28,49 @@ pub enum ScanDataError {
     BadCharacter,
     #[error("{got} characters of data, expected {expected}")]
     WrongLength { expected: usize, got: usize },
+    #[error("multi-echo data holds {got} steps, expected {expected}")]
+    MissingSteps { expected: usize, got: usize },
+    #[error("multi-echo data goes on after the {expected} steps requested")]
+    ExtraData { expected: usize },
+    #[error("a multi-echo marker '&' comes before the scan's first value")]
+    EchoBeforeFirstValue,
+    #[error("a step has more than 3 echoes")]
+    TooManyEchoes,
+    #[error("a multi-echo marker '&' is not followed by a whole value")]
+    DanglingEchoMark,
 }
 
 impl ScanDataError {
     /// The error-counter name: a short scan is `incomplete_scan`, a wrong sum
-    /// `bad_checksum`, anything else `malformed_reply`.
+    /// `bad_checksum`, a misplaced `&` or a fourth echo `malformed_multiecho`,
+    /// anything else `malformed_reply`.
     pub fn kind(&self) -> &'static str {
         match self {
             Self::BadChecksum => "bad_checksum",
             Self::WrongLength { expected, got } if got < expected => "incomplete_scan",
+            Self::MissingSteps { .. } => "incomplete_scan",
+            Self::EchoBeforeFirstValue | Self::TooManyEchoes | Self::DanglingEchoMark => {
+                "malformed_multiecho"
+            }
             _ => "malformed_reply",
         }
     }
 }
 
-/// One decoded scan: the sensor's timestamp and one value per cluster.
+/// One decoded scan: the sensor's timestamp and one value per cluster (per
+/// echo for multi-echo commands).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ScanData {
     /// The sensor's 24-bit millisecond timer when it took the scan.
     pub timestamp_ms: u32,
-    /// Ranges in mm (or error codes below `DMIN`), in step order.
+    /// Ranges in mm (or error codes below `DMIN`), in step order; for
+    /// multi-echo commands each step's echoes in wire order, first echo first.
     pub ranges: Vec<u32>,
-    /// Intensities, one per range, for `ME`/`GE`.
+    /// Intensities, one per range, for `ME`/`GE`/`NE`/`HE`.
     pub intensities: Option<Vec<u32>>,
+    /// Multi-echo commands only: how many echoes (1 to 3) each step has, in
+    /// step order; they add up to `ranges.len()`.
+    pub echoes: Option<Vec<u8>>,
 }
 
 /// Decodes `lines` (the reply's lines after its status line: the timestamp
@@ -64,23 +85,37 @@ pub fn decode_scan(lines: &[Vec<u8>], request: &ScanRequest) -> Result<ScanData,
     } else {
         range_width
     };
-    let expected = request.value_count().saturating_mul(group);
-    if text.len() != expected {
-        return Err(ScanDataError::WrongLength {
-            expected,
-            got: text.len(),
-        });
-    }
-    let values = text
+    let steps = request.value_count();
+    let (groups, echoes) = if request.kind.is_multiecho() {
+        let split = split_echoes(&text, group, steps)?;
+        (split.groups, Some(split.echo_counts))
+    } else {
+        check_length(&text, steps.saturating_mul(group))?;
+        (text, None)
+    };
+    let values = groups
         .chunks_exact(range_width)
         .map(decode)
         .collect::<Option<Vec<u32>>>()
         .ok_or(ScanDataError::BadCharacter)?;
-    Ok(split_values(
+    let (ranges, intensities) = split_values(values, request.kind.has_intensity());
+    Ok(ScanData {
         timestamp_ms,
-        values,
-        request.kind.has_intensity(),
-    ))
+        ranges,
+        intensities,
+        echoes,
+    })
+}
+
+fn check_length(text: &[u8], expected: usize) -> Result<(), ScanDataError> {
+    if text.len() == expected {
+        Ok(())
+    } else {
+        Err(ScanDataError::WrongLength {
+            expected,
+            got: text.len(),
+        })
+    }
 }
 
 /// Decodes a timestamp line: 4 characters and their sum (also the `TM1`
@@ -105,13 +140,10 @@ fn join_data_lines(lines: &[Vec<u8>]) -> Result<Vec<u8>, ScanDataError> {
     Ok(text)
 }
 
-fn split_values(timestamp_ms: u32, values: Vec<u32>, with_intensity: bool) -> ScanData {
+/// Ranges, and intensities when every value is a (range, intensity) pair.
+fn split_values(values: Vec<u32>, with_intensity: bool) -> (Vec<u32>, Option<Vec<u32>>) {
     if !with_intensity {
-        return ScanData {
-            timestamp_ms,
-            ranges: values,
-            intensities: None,
-        };
+        return (values, None);
     }
     let (ranges, intensities) = values
         .chunks_exact(2)
@@ -120,9 +152,5 @@ fn split_values(timestamp_ms: u32, values: Vec<u32>, with_intensity: bool) -> Sc
             _ => None,
         })
         .unzip();
-    ScanData {
-        timestamp_ms,
-        ranges,
-        intensities: Some(intensities),
-    }
+    (ranges, Some(intensities))
 }

@@ -1,5 +1,6 @@
-//! The driver's measurement loop: the `MD`/`MS`/`ME` acknowledgement and
-//! streamed scans, polled `GD`/`GS`/`GE` scans, the intensity fallback, and
+//! The driver's measurement loop: the `MD`/`MS`/`ME`/`ND`/`NE`
+//! acknowledgement and streamed scans, polled `GD`/`GS`/`GE`/`HD`/`HE` scans,
+//! the multi-echo and intensity fallbacks, and
 //! the sensor's fault statuses (spec C-42-03320B §8.1, §8.2): `98` resumed is
 //! counted, `0L` abnormal or repeated hardware trouble reboots the sensor.
 
@@ -64,25 +65,17 @@ impl ScipDriver {
         }
     }
 
-    /// The measurement command was refused: fall back from intensity, or
-    /// give up on this connection.
+    /// The measurement command was refused: fall back from multi-echo or
+    /// intensity, or give up on this connection.
     fn on_rejected(&mut self, status: Status, now: HostTime, out: &mut Vec<DriverOutput>) {
         self.stats.count(status.error_kind());
-        let Some(request) = self.session.request.as_mut() else {
+        let Some(kind) = self.session.request.as_ref().map(|r| r.kind) else {
             return;
         };
         if self.session.announced && self.phase != Phase::Polling {
             return; // a stray status inside a running stream: counted only
         }
-        let kind = request.kind;
-        if kind.has_intensity() {
-            request.kind = kind.without_intensity();
-            self.stats.count("intensity_unsupported");
-            self.session.intensity_note = Some(format!(
-                "unsupported ({} rejected with status {})",
-                kind.symbol(),
-                status.describe()
-            ));
+        if self.fall_back(status) {
             return self.send_scan_request(now, out);
         }
         if self.phase == Phase::Polling && self.session.announced {
@@ -94,6 +87,35 @@ impl ScipDriver {
             status.describe()
         );
         self.reconnect(reason, out);
+    }
+
+    /// Drops multi-echo (`ND` to `MD`, `NE` to `ME`, `HD` to `GD`, `HE` to
+    /// `GE`), or else intensity (`ME` to `MD`, `GE` to `GD`), from the refused
+    /// request: counted (`multiecho_unsupported`, `intensity_unsupported`) and
+    /// noted for Identity. `false` when the request has neither. The next
+    /// connect builds the configured request again.
+    fn fall_back(&mut self, status: Status) -> bool {
+        let Some(request) = self.session.request.as_mut() else {
+            return false;
+        };
+        let kind = request.kind;
+        let note = Some(format!(
+            "unsupported ({} rejected with status {})",
+            kind.symbol(),
+            status.describe()
+        ));
+        if kind.is_multiecho() {
+            request.kind = kind.without_multiecho();
+            self.stats.count("multiecho_unsupported");
+            self.session.multiecho_note = note;
+        } else if kind.has_intensity() {
+            request.kind = kind.without_intensity();
+            self.stats.count("intensity_unsupported");
+            self.session.intensity_note = note;
+        } else {
+            return false;
+        }
+        true
     }
 
     fn on_hardware_fault(&mut self, status: Status, now: HostTime, out: &mut Vec<DriverOutput>) {
@@ -133,10 +155,17 @@ impl ScipDriver {
         let Some(rays) = plan.rays(&data) else {
             return self.dropped_scan("incomplete_scan", now, out);
         };
+        // On RS-232 the reply's bytes take time on the line (8N1: 10 bits a
+        // byte); over USB that time is negligible.
+        let reply_bytes: u64 = reply.lines.iter().map(|l| l.len() as u64 + 1).sum();
+        let transfer_ns = self.session.baud.filter(|b| *b > 0).map_or(0, |b| {
+            reply_bytes.saturating_mul(10_000_000_000) / u64::from(b)
+        });
         let timing = ScanTiming {
             device_ms: self.session.clock.unwrap(data.timestamp_ms),
             first_ray_delay_ns: plan.first_ray_delay_ns(),
             sweep_ns: plan.sweep_ns(),
+            transfer_ns,
             arrival: now,
         };
         let stamp_ns = self.session.stamper.stamp(&timing, &mut self.stats);
@@ -174,11 +203,13 @@ impl ScipDriver {
     fn identity(&self) -> Vec<(String, String)> {
         let mut pairs = self.session.identity.clone();
         if let Some(request) = &self.session.request {
-            let intensity = match (&self.session.intensity_note, request.kind.has_intensity()) {
+            let note = |note: &Option<String>, on: bool| match (note, on) {
                 (Some(note), _) => note.clone(),
                 (None, true) => "yes".to_owned(),
                 (None, false) => "no".to_owned(),
             };
+            let intensity = note(&self.session.intensity_note, request.kind.has_intensity());
+            let multiecho = note(&self.session.multiecho_note, request.kind.is_multiecho());
             pairs.push(("scan_command".into(), request.kind.symbol().into()));
             pairs.push((
                 "steps".into(),
@@ -186,6 +217,7 @@ impl ScipDriver {
             ));
             pairs.push(("cluster".into(), request.cluster.to_string()));
             pairs.push(("intensity".into(), intensity));
+            pairs.push(("multiecho".into(), multiecho));
         }
         let clock = match self.session.sync.best_rtt_ns() {
             Some(rtt) if !self.session.stamper.is_fallen_back() => {

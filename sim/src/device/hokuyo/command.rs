@@ -11,23 +11,32 @@ use super::status::{self, Status};
 pub(crate) enum DataEncoding {
     /// MS/GS: 2 characters per range (12 bits).
     TwoChar,
-    /// MD/GD: 3 characters per range.
+    /// MD/GD/HD/ND: 3 characters per range.
     ThreeChar,
-    /// ME/GE: 3 characters of range then 3 of intensity.
+    /// ME/GE/HE/NE: 3 characters of range then 3 of intensity.
     WithIntensity,
+}
+
+/// How a scan's values are sent.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct DataFormat {
+    pub(crate) encoding: DataEncoding,
+    /// HD/ND/HE/NE: every echo of a step, the further ones each prefixed
+    /// `&` (urg_c `receive_length_data()`).
+    pub(crate) multi_echo: bool,
 }
 
 /// The steps a scan covers and how they are grouped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct ScanRequest {
-    pub(crate) encoding: DataEncoding,
+    pub(crate) format: DataFormat,
     pub(crate) start: u32,
     pub(crate) end: u32,
     /// Steps merged into one value, at least 1 (a request's 0 means 1).
     pub(crate) cluster: u32,
 }
 
-/// An MD/MS/ME request.
+/// An MD/MS/ME/ND/NE request.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct StreamRequest {
     pub(crate) scan: ScanRequest,
@@ -77,7 +86,7 @@ const fn refuse(status: Status, kind: Rejection) -> Refusal {
 const MAX_TAG: usize = 16;
 
 /// The command symbols, each with its number of parameter characters.
-const SYMBOLS: [(&[u8; 2], usize); 15] = [
+const SYMBOLS: [(&[u8; 2], usize); 19] = [
     (b"VV", 0),
     (b"PP", 0),
     (b"II", 0),
@@ -93,14 +102,46 @@ const SYMBOLS: [(&[u8; 2], usize); 15] = [
     (b"GD", 10),
     (b"GS", 10),
     (b"GE", 10),
+    (b"ND", 13),
+    (b"NE", 13),
+    (b"HD", 10),
+    (b"HE", 10),
 ];
 
-/// The line's command symbol if it is one this model knows.
+/// The line's command symbol if it is one this model knows: intensity
+/// (ME/GE/HE/NE) and multi-echo (HD/ND/HE/NE) commands only on models that
+/// have them.
 pub(crate) fn known_symbol(line: &[u8], spec: &ModelSpec) -> Option<[u8; 2]> {
     let symbol = [*line.first()?, *line.get(1)?];
     let known = SYMBOLS.iter().any(|(s, _)| **s == symbol);
-    let needs_intensity = symbol == *b"ME" || symbol == *b"GE";
-    (known && (spec.has_intensity || !needs_intensity)).then_some(symbol)
+    let supported = data_format(symbol).is_none_or(|format| {
+        let intensity_ok = spec.has_intensity || format.encoding != DataEncoding::WithIntensity;
+        intensity_ok && (spec.has_multi_echo || !format.multi_echo)
+    });
+    (known && supported).then_some(symbol)
+}
+
+/// The data format of a scan command (urg_c `parse_distance_parameter()`):
+/// the second letter gives the encoding (S 2 characters, D 3, E 3 + 3 of
+/// intensity), a first letter H or N multi-echo. `None` for other commands
+/// (HS, for one, is the sensitivity command, spec §8.9).
+fn data_format(symbol: [u8; 2]) -> Option<DataFormat> {
+    let [kind, data] = symbol;
+    let multi_echo = match kind {
+        b'M' | b'G' => false,
+        b'N' | b'H' => true,
+        _ => return None,
+    };
+    let encoding = match (data, multi_echo) {
+        (b'S', false) => DataEncoding::TwoChar,
+        (b'D', _) => DataEncoding::ThreeChar,
+        (b'E', _) => DataEncoding::WithIntensity,
+        _ => return None,
+    };
+    Some(DataFormat {
+        encoding,
+        multi_echo,
+    })
 }
 
 /// Parses and checks `line` for a sensor of `spec`.
@@ -157,13 +198,23 @@ fn parse_parameters(symbol: [u8; 2], params: &[u8], spec: &ModelSpec) -> Result<
         b"SS" => decimal(params)
             .map(Command::BitRate)
             .ok_or(bad(status::CODE_01)),
-        b"MD" => parse_stream(DataEncoding::ThreeChar, params, spec),
-        b"MS" => parse_stream(DataEncoding::TwoChar, params, spec),
-        b"ME" => parse_stream(DataEncoding::WithIntensity, params, spec),
-        b"GD" => parse_scan(DataEncoding::ThreeChar, params, spec).map(Command::Single),
-        b"GS" => parse_scan(DataEncoding::TwoChar, params, spec).map(Command::Single),
-        b"GE" => parse_scan(DataEncoding::WithIntensity, params, spec).map(Command::Single),
-        _ => Err(refuse(status::UNDEFINED, Rejection::UnknownCommand)),
+        _ => parse_scan_command(symbol, params, spec),
+    }
+}
+
+/// M*/N* stream scans, G*/H* send one (urg_c `send_distance_command()`:
+/// single-scan letters G/H, continuous M/N).
+fn parse_scan_command(
+    symbol: [u8; 2],
+    params: &[u8],
+    spec: &ModelSpec,
+) -> Result<Command, Refusal> {
+    let undefined = refuse(status::UNDEFINED, Rejection::UnknownCommand);
+    let format = data_format(symbol).ok_or(undefined)?;
+    match symbol[0] {
+        b'M' | b'N' => parse_stream(format, params, spec),
+        b'G' | b'H' => parse_scan(format, params, spec).map(Command::Single),
+        _ => Err(undefined),
     }
 }
 
@@ -181,15 +232,12 @@ fn parse_time(params: &[u8]) -> Result<Command, Refusal> {
     }
 }
 
-/// MD/MS/ME: start(4) end(4) cluster(2) interval(1) scans(2), statuses
-/// 01..07 (spec §8.1, p. 11).
-fn parse_stream(
-    encoding: DataEncoding,
-    params: &[u8],
-    spec: &ModelSpec,
-) -> Result<Command, Refusal> {
+/// MD/MS/ME/ND/NE: start(4) end(4) cluster(2) interval(1) scans(2),
+/// statuses 01..07 (spec §8.1, p. 11; ND/NE as MD: urg_c
+/// `send_distance_command()` formats them alike).
+fn parse_stream(format: DataFormat, params: &[u8], spec: &ModelSpec) -> Result<Command, Refusal> {
     let (scan_params, rest) = params.split_at(params.len().min(10));
-    let scan = parse_scan_fields(encoding, scan_params)?;
+    let scan = parse_scan_fields(format, scan_params)?;
     let interval = field(rest, 0, 1).ok_or(bad(status::CODE_06))?;
     let scans = field(rest, 1, 2).ok_or(bad(status::CODE_07))?;
     check_steps(&scan, spec)?;
@@ -200,23 +248,20 @@ fn parse_stream(
     }))
 }
 
-/// GD/GS/GE: start(4) end(4) cluster(2), statuses 01..05 (spec §8.2, p. 13).
-fn parse_scan(
-    encoding: DataEncoding,
-    params: &[u8],
-    spec: &ModelSpec,
-) -> Result<ScanRequest, Refusal> {
-    let scan = parse_scan_fields(encoding, params)?;
+/// GD/GS/GE/HD/HE: start(4) end(4) cluster(2), statuses 01..05 (spec
+/// §8.2, p. 13).
+fn parse_scan(format: DataFormat, params: &[u8], spec: &ModelSpec) -> Result<ScanRequest, Refusal> {
+    let scan = parse_scan_fields(format, params)?;
     check_steps(&scan, spec)?;
     Ok(scan)
 }
 
-fn parse_scan_fields(encoding: DataEncoding, params: &[u8]) -> Result<ScanRequest, Refusal> {
+fn parse_scan_fields(format: DataFormat, params: &[u8]) -> Result<ScanRequest, Refusal> {
     let start = field(params, 0, 4).ok_or(bad(status::CODE_01))?;
     let end = field(params, 4, 4).ok_or(bad(status::CODE_02))?;
     let cluster = field(params, 8, 2).ok_or(bad(status::CODE_03))?;
     Ok(ScanRequest {
-        encoding,
+        format,
         start,
         end,
         cluster: cluster.max(1),

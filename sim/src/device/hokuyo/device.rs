@@ -3,7 +3,8 @@
 //! handling is in `handlers.rs`.
 
 use super::codec::{data_line_count, encode_into, Reply};
-use super::command::{ScanRequest, StreamRequest};
+use super::command::{DataEncoding, ScanRequest, StreamRequest};
+use super::echo::{encode_echoes, max_payload_len, EchoSampler, StepEchoes};
 use super::faults::FaultInjector;
 use super::framer::LineFramer;
 use super::model::{HokuyoModel, ModelSpec};
@@ -26,7 +27,7 @@ pub(crate) enum Protocol {
     Scip20,
 }
 
-/// A running MD/MS/ME stream.
+/// A running MD/MS/ME/ND/NE stream.
 #[derive(Debug)]
 pub(crate) struct Stream {
     pub(crate) request: StreamRequest,
@@ -69,11 +70,13 @@ pub struct HokuyoEmulator {
     pub(crate) output: OutputLine,
     pub(crate) sensor: Sensor,
     pub(crate) sampler: Sampler,
+    pub(crate) echo_sampler: EchoSampler,
     pub(crate) faults: FaultInjector,
     pub(crate) stats: HokuyoStats,
     /// Whether `abnormal_after_scans` is still to happen.
     pub(crate) abnormal_armed: bool,
     measurements: Vec<Measurement>,
+    echoes: Vec<StepEchoes>,
 }
 
 impl HokuyoEmulator {
@@ -98,10 +101,12 @@ impl HokuyoEmulator {
                 options.range_noise_scale,
                 options.dropout_probability,
             ),
+            echo_sampler: EchoSampler::new(options.seed, options.multi_echo_fraction),
             faults: FaultInjector::new(options.faults),
             stats: HokuyoStats::default(),
             abnormal_armed: options.abnormal_after_scans.is_some(),
             measurements: Vec::new(),
+            echoes: Vec::new(),
             options,
         };
         emulator.check_abnormal();
@@ -227,8 +232,7 @@ impl HokuyoEmulator {
             request,
             &mut self.measurements,
         );
-        let mut payload = Vec::with_capacity(self.measurements.len() * 6);
-        encode_values(&self.measurements, request.encoding, &mut payload);
+        let payload = self.encode_scan(request);
         self.stats.scans_sent += 1;
         let faults = self
             .faults
@@ -251,6 +255,22 @@ impl HokuyoEmulator {
         self.send(t, faults.garbage);
         self.send(t, reply.finish());
         self.check_abnormal();
+    }
+
+    /// The data of the measured scan, before cutting into lines; for a
+    /// multi-echo request with the further echoes drawn now.
+    fn encode_scan(&mut self, request: &ScanRequest) -> Vec<u8> {
+        let mut payload = Vec::with_capacity(self.measurements.len() * 6);
+        let encoding = request.format.encoding;
+        if request.format.multi_echo {
+            let firsts = &self.measurements;
+            self.echo_sampler
+                .add_echoes(self.spec, firsts, &mut self.echoes);
+            encode_echoes(&self.echoes, encoding, &mut payload);
+        } else {
+            encode_values(&self.measurements, encoding, &mut payload);
+        }
+        payload
     }
 
     /// Enters the abnormal state once `abnormal_after_scans` scans are sent.
@@ -349,16 +369,21 @@ fn stream_echo(line: &[u8], remaining: u32) -> Vec<u8> {
     echo
 }
 
-/// The length of a scan message for `request` with an echo of `echo_len`.
+/// The length of a scan message for `request` with an echo of `echo_len`;
+/// for a multi-echo request the longest it can be.
 fn scan_message_len(echo_len: usize, request: &ScanRequest) -> usize {
     let steps = request.end.saturating_sub(request.start) as usize + 1;
     let values = steps.div_ceil(request.cluster.max(1) as usize);
-    let width = match request.encoding {
-        super::command::DataEncoding::TwoChar => 2,
-        super::command::DataEncoding::ThreeChar => 3,
-        super::command::DataEncoding::WithIntensity => 6,
+    let width = match request.format.encoding {
+        DataEncoding::TwoChar => 2,
+        DataEncoding::ThreeChar => 3,
+        DataEncoding::WithIntensity => 6,
     };
-    let payload = values * width;
+    let payload = if request.format.multi_echo {
+        max_payload_len(values, width)
+    } else {
+        values * width
+    };
     // Echo+LF, "99b"+LF, timestamp+sum+LF, data lines with sum+LF, LF.
     echo_len + 1 + 4 + 6 + payload + 2 * data_line_count(payload) + 1
 }

@@ -218,7 +218,7 @@ impl HokuyoEmulator {
         self.output.change_baud_after_queued(now, rate);
     }
 
-    /// MD/MS/ME: acknowledge, switch the laser on, and send scans of the
+    /// MD/MS/ME/ND/NE: acknowledge, switch the laser on, and send scans of the
     /// revolutions that start after now (spec §8.1, p. 10: "measurement data
     /// that was taken after the command was received"). A new stream
     /// replaces a running one.
@@ -233,8 +233,8 @@ impl HokuyoEmulator {
         });
     }
 
-    /// GD/GS/GE: the latest complete revolution, or 10 with the laser off
-    /// (spec §8.2, p. 13).
+    /// GD/GS/GE/HD/HE: the latest complete revolution, or 10 with the laser
+    /// off (spec §8.2, p. 13; HD/HE assumed to behave as GD/GE).
     fn single_scan(&mut self, request: &ScanRequest, echo: &[u8], now: f64) {
         if !self.sensor.laser_on {
             return self.wrong_state(now, echo, status::LASER_OFF);

@@ -3,15 +3,17 @@
 //! Specification for SCIP2.0"; page numbers below are that document's).
 //!
 //! [`HokuyoEmulator`] answers the SCIP 2.0 command set (VV, PP, II, BM, QT,
-//! RS, RB, TM, SS, MD/MS, GD/GS and, on the UTM-30LX, ME/GE) with the real
-//! replies, streams scans it measures by casting rays into a
-//! [`RaySource`](crate::device::RaySource) at the device's rotation rate, and
-//! paces its output at the RS-232 bit rate when it sits on a serial line.
+//! RS, RB, TM, SS, MD/MS, GD/GS and, on the UTM-30LX, ME/GE and the
+//! multi-echo HD/ND/HE/NE) with the real replies, streams scans it measures
+//! by casting rays into a [`RaySource`](crate::device::RaySource) at the
+//! device's rotation rate, and paces its output at the RS-232 bit rate when
+//! it sits on a serial line.
 //! Pure: time is an argument, nothing here reads a clock or does I/O.
 
 mod codec;
 mod command;
 mod device;
+mod echo;
 mod faults;
 mod framer;
 mod handlers;

@@ -7,7 +7,7 @@ pub enum HokuyoModel {
     /// URG-04LX: 5.6 m, 240°, 10 Hz, USB or RS-232.
     Urg04lx,
     /// UTM-30LX (TOP-URG): 30 m (PP reports 60 m), 270°, 40 Hz, USB, with
-    /// intensity (ME/GE).
+    /// intensity (ME/GE) and multi-echo (HD/ND/HE/NE).
     Utm30lx,
 }
 
@@ -87,6 +87,9 @@ pub(crate) struct ModelSpec {
     pub(crate) scan_rpm: u32,
     /// Whether ME/GE (range + intensity) exist.
     pub(crate) has_intensity: bool,
+    /// Whether the multi-echo commands HD/ND (and, with intensity, HE/NE)
+    /// exist.
+    pub(crate) has_multi_echo: bool,
     /// SS bit rates the RS-232 port accepts; empty = no RS-232 (SS → 04).
     pub(crate) bit_rates: &'static [u32],
     /// The RS-232 bit rate a USB-connected sensor reports and SS compares
@@ -118,6 +121,7 @@ static URG_04LX: ModelSpec = ModelSpec {
     afrt: 384,
     scan_rpm: 600,
     has_intensity: false,
+    has_multi_echo: false,
     bit_rates: &[19_200, 57_600, 115_200, 250_000, 500_000, 750_000],
     default_bit_rate: 19_200,
     errors: ErrorCodes {
@@ -151,6 +155,7 @@ static UTM_30LX: ModelSpec = ModelSpec {
     afrt: 540,
     scan_rpm: 2400,
     has_intensity: true,
+    has_multi_echo: true,
     bit_rates: &[],
     default_bit_rate: 115_200,
     errors: ErrorCodes {

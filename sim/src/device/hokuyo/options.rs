@@ -1,5 +1,5 @@
 //! How an emulated sensor is set up: its link, start-up protocol, clock,
-//! failure behaviour and measurement noise.
+//! failure behaviour, measurement noise and multi-echo rate.
 
 use crate::device::Faults;
 
@@ -46,6 +46,12 @@ pub struct HokuyoOptions {
     /// Probability that a ray is lost and reported as the model's error
     /// code (below DMIN). Default: 0.
     pub dropout_probability: f64,
+    /// Multi-echo scans (HD/ND/HE/NE, UTM-30LX): the probability that a
+    /// step's echo is followed by a further one (its surface let part of
+    /// the beam through), 0.3 to 2 m beyond it and within DMAX; a step thus
+    /// has a second echo with this probability and a third with its square.
+    /// Clamped to 0..=1. Default: 0.05.
+    pub multi_echo_fraction: f64,
     /// Seconds the sensor is silent (and deaf) while rebooting after the
     /// second RB. Default: 1.0.
     pub reboot_seconds: f64,
@@ -62,6 +68,7 @@ impl Default for HokuyoOptions {
             seed: 0,
             range_noise_scale: 1.0,
             dropout_probability: 0.0,
+            multi_echo_fraction: 0.05,
             reboot_seconds: 1.0,
         }
     }

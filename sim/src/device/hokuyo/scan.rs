@@ -1,6 +1,7 @@
 //! Measuring a scan: one ray per step cast into the world at the step's own
 //! time, with the model's noise, dropouts and error codes, merged into
-//! clusters and encoded for MD/MS/ME data lines.
+//! clusters and encoded for MD/MS/ME data lines (further echoes of
+//! multi-echo scans: `echo.rs`).
 
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
@@ -154,23 +155,28 @@ fn closer(spec: &ModelSpec, a: Measurement, b: Measurement) -> Measurement {
 }
 
 /// Appends the encoded values (before cutting into 64-character lines).
-/// A range MS cannot carry (above 4095 mm) is sent as 0, an error code.
 pub(crate) fn encode_values(values: &[Measurement], encoding: DataEncoding, out: &mut Vec<u8>) {
     for value in values {
-        match encoding {
-            DataEncoding::TwoChar => {
-                let range = if value.range_mm > TWO_CHAR_MAX {
-                    0
-                } else {
-                    value.range_mm
-                };
-                encode_into(range, 2, out);
-            }
-            DataEncoding::ThreeChar => encode_into(value.range_mm.min(THREE_CHAR_MAX), 3, out),
-            DataEncoding::WithIntensity => {
-                encode_into(value.range_mm.min(THREE_CHAR_MAX), 3, out);
-                encode_into(value.intensity.min(THREE_CHAR_MAX), 3, out);
-            }
+        encode_value(value, encoding, out);
+    }
+}
+
+/// Appends one encoded value. A range MS cannot carry (above 4095 mm) is
+/// sent as 0, an error code.
+pub(crate) fn encode_value(value: &Measurement, encoding: DataEncoding, out: &mut Vec<u8>) {
+    match encoding {
+        DataEncoding::TwoChar => {
+            let range = if value.range_mm > TWO_CHAR_MAX {
+                0
+            } else {
+                value.range_mm
+            };
+            encode_into(range, 2, out);
+        }
+        DataEncoding::ThreeChar => encode_into(value.range_mm.min(THREE_CHAR_MAX), 3, out),
+        DataEncoding::WithIntensity => {
+            encode_into(value.range_mm.min(THREE_CHAR_MAX), 3, out);
+            encode_into(value.intensity.min(THREE_CHAR_MAX), 3, out);
         }
     }
 }

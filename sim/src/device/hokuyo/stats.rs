@@ -19,7 +19,7 @@ pub enum Rejection {
     /// A line longer than the input buffer (`0B`).
     LineTooLong,
     /// A command refused in the sensor's current state (TM `02`/`03`/`04`,
-    /// GD/GS/GE `10` laser off, SS `03`/`04`).
+    /// GD/GS/GE/HD/HE `10` laser off, SS `03`/`04`).
     WrongState,
     /// A command other than TM while in time-adjust mode (`0E`).
     TimeAdjustMode,
@@ -77,7 +77,7 @@ impl Rejection {
 pub struct HokuyoStats {
     /// Command lines received (empty lines excluded).
     pub commands: u64,
-    /// Scan messages sent (MD/MS/ME scans and GD/GS/GE replies).
+    /// Scan messages sent (MD/MS/ME/ND/NE scans and GD/GS/GE/HD/HE replies).
     pub scans_sent: u64,
     /// Stream scans skipped because the RS-232 line was still sending the
     /// previous output when they were measured.

@@ -9,7 +9,7 @@ pub(crate) type Status = [u8; 2];
 
 /// Command accepted.
 pub(crate) const OK: Status = *b"00";
-/// Scan message of a running MD/MS/ME stream (spec p. 11).
+/// Scan message of a running MD/MS/ME/ND/NE stream (spec p. 11).
 pub(crate) const STREAMING: Status = *b"99";
 /// Per-command codes 01..07 (meaning depends on the command).
 pub(crate) const CODE_01: Status = *b"01";
@@ -19,7 +19,7 @@ pub(crate) const CODE_04: Status = *b"04";
 pub(crate) const CODE_05: Status = *b"05";
 pub(crate) const CODE_06: Status = *b"06";
 pub(crate) const CODE_07: Status = *b"07";
-/// GD/GS/GE: the laser is off (spec p. 13).
+/// GD/GS/GE/HD/HE: the laser is off (spec p. 13).
 pub(crate) const LASER_OFF: Status = *b"10";
 /// §9: buffer shortage (used for a line longer than the input buffer).
 pub(crate) const BUFFER_SHORTAGE: Status = *b"0B";

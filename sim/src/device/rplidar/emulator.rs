@@ -47,7 +47,7 @@ pub struct RplidarEmulator {
 
 impl RplidarEmulator {
     /// A powered-up, idle device of `model` measuring `rays`. Its motor
-    /// starts turning at time 0 (DTR released; A2 duty 600) and is stable
+    /// starts turning at time 0 (DTR released; A2 duty 660) and is stable
     /// after half a second.
     pub fn new(model: RplidarModel, rays: Box<dyn RaySource>, options: RplidarOptions) -> Self {
         let spec = model.spec();
@@ -158,7 +158,7 @@ impl RplidarEmulator {
     }
 
     /// RESET: the core reboots as from power-up (scan stopped, A2 duty back
-    /// to 600) and prints its banner [`BOOT_S`] later.
+    /// to 660) and prints its banner [`BOOT_S`] later.
     fn reset(&mut self, now: f64) {
         self.stream = None;
         self.parser.reset();

@@ -117,10 +117,11 @@ pub(crate) struct ModelSpec {
     pub typical_mode: u16,
 }
 
-/// The PWM duty at which an A2 turns at its nominal rate; also its power-up
-/// duty (the SDK falls back to 600 when the device has no desired-speed
-/// entry, `setMotorSpeed()`).
-pub(crate) const NOMINAL_PWM: u16 = 600;
+/// The PWM duty at which an A2 turns at its nominal 10 Hz; also its
+/// power-up duty. rplidar_sdk 1.x (`rplidar_cmd.h`, `DEFAULT_MOTOR_PWM`) and
+/// rplidar_ros drive the A2 at 660 for its nominal rate; SDK 2.x falls back to
+/// 600 when the device reports no desired speed.
+pub(crate) const NOMINAL_PWM: u16 = 660;
 /// The largest duty the accessory board accepts; larger requests saturate.
 pub(crate) const MAX_PWM: u16 = 1023;
 

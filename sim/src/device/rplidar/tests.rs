@@ -472,12 +472,12 @@ fn a2_motor_follows_pwm_and_ignores_dtr() {
     assert!(exchange(&mut lidar, &request(0xF0, &[0, 0]), 1.5).is_empty());
     assert!(lidar.is_scanning());
     assert!(run(&mut lidar, 1.5, 3.0).is_empty());
-    exchange(&mut lidar, &request(0xF0, &600u16.to_le_bytes()), 3.0);
+    exchange(&mut lidar, &request(0xF0, &660u16.to_le_bytes()), 3.0);
     assert!(poll(&mut lidar, 3.499).is_empty());
     assert!(!poll(&mut lidar, 3.6).is_empty());
     // Saturates at 1023.
     exchange(&mut lidar, &request(0xF0, &[0xFF, 0xFF]), 4.0);
-    assert_eq!(lidar.motor_target_hz(), 10.0 * 1023.0 / 600.0);
+    assert_eq!(lidar.motor_target_hz(), 10.0 * 1023.0 / 660.0);
 }
 
 #[test]

@@ -61,7 +61,9 @@ fn stamp_maps_device_time_and_adds_the_first_ray_delay() {
         device_ms: 2_000,
         first_ray_delay_ns: 16_000_000,
         sweep_ns: 66_000_000,
-        arrival: HostTime::new(0, 1_000_000_000_000 + 2_000_000_000 + 200_000_000),
+        transfer_ns: 0,
+        // The last ray 16 + 66 ms after the stamp, its bytes 10 ms later.
+        arrival: HostTime::new(0, 1_000_000_000_000 + 2_000_000_000 + 92_000_000),
     };
     let stamp = stamper.stamp(&timing, &mut stats);
     assert_eq!(stamp, 1_000_000_000_000 + 2_000_000_000 + 16_000_000);
@@ -79,6 +81,7 @@ fn implausible_stamp_falls_back_until_the_next_sync() {
         device_ms: 10_500,
         first_ray_delay_ns: 0,
         sweep_ns: 70_000_000,
+        transfer_ns: 0,
         arrival,
     };
     assert_eq!(
@@ -98,9 +101,10 @@ fn implausible_stamp_falls_back_until_the_next_sync() {
     assert_eq!(stats.errors("clock_mismatch"), 1);
     stamper.set_offset(Some(0));
     assert_eq!(stamper.stamp(&fine, &mut stats), 9_900_000_000);
-    // Too old (more than 1 s before the arrival) is a mismatch too.
+    // Too old (the last ray more than 100 ms before the arrival) is a
+    // mismatch too: a sensor clock drifted or reset.
     let stale = ScanTiming {
-        device_ms: 8_900,
+        device_ms: 9_820,
         ..future
     };
     assert_eq!(
@@ -108,6 +112,26 @@ fn implausible_stamp_falls_back_until_the_next_sync() {
         10_000_000_000 - 70_000_000
     );
     assert_eq!(stats.errors("clock_mismatch"), 2);
+    // So is a last ray after its own bytes arrived (beyond the 5 ms slack).
+    stamper.set_offset(Some(0));
+    let early = ScanTiming {
+        device_ms: 9_936,
+        ..future
+    };
+    assert_eq!(
+        stamper.stamp(&early, &mut stats),
+        10_000_000_000 - 70_000_000
+    );
+    assert_eq!(stats.errors("clock_mismatch"), 3);
+    // On a slow line the reply's transfer time widens the window by itself.
+    stamper.set_offset(Some(0));
+    let slow = ScanTiming {
+        device_ms: 8_900,
+        transfer_ns: 1_100_000_000,
+        ..future
+    };
+    assert_eq!(stamper.stamp(&slow, &mut stats), 8_900_000_000);
+    assert_eq!(stats.errors("clock_mismatch"), 3);
 }
 
 #[test]

@@ -4,6 +4,8 @@
 
 mod clock;
 mod codec;
+mod multiecho;
+mod multiecho_props;
 mod props;
 mod stream;
 mod support;

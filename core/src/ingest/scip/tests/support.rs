@@ -2,7 +2,7 @@
 //! and a rig that drives a [`ScipDriver`] on a scripted clock.
 
 use crate::ingest::device::{DeviceDriver, DriverOutput, HostTime, RangeScan};
-use crate::ingest::scip::{encode, line_sum, ScipConfig, ScipDriver};
+use crate::ingest::scip::{encode, line_sum, ScipConfig, ScipDriver, ECHO_MARK};
 
 /// A line with its sum and LF.
 pub fn summed(body: &str) -> String {
@@ -63,11 +63,37 @@ pub fn ii_reply(stat: &str) -> Vec<u8> {
 /// The data part of a scan: timestamp line, then `values` encoded in
 /// `width` characters and cut into 64-character lines, each with its sum.
 pub fn scan_lines(timestamp_ms: u32, values: &[u32], width: usize) -> Vec<String> {
-    let stamp = String::from_utf8(encode(timestamp_ms, 4).unwrap()).unwrap();
     let text: Vec<u8> = values
         .iter()
         .flat_map(|&v| encode(v, width).unwrap())
         .collect();
+    data_lines(timestamp_ms, &text)
+}
+
+/// The data part of a multi-echo scan: timestamp line, then each step's
+/// echoes (`values_per_echo` 3-character values per echo: the range, or the
+/// range and intensity), every echo after a step's first prefixed `&`, cut
+/// into 64-character lines with sums.
+pub fn multiecho_lines(
+    timestamp_ms: u32,
+    steps: &[Vec<u32>],
+    values_per_echo: usize,
+) -> Vec<String> {
+    let mut text = Vec::new();
+    for step in steps {
+        for (echo, values) in step.chunks(values_per_echo).enumerate() {
+            if echo > 0 {
+                text.push(ECHO_MARK);
+            }
+            text.extend(values.iter().flat_map(|&v| encode(v, 3).unwrap()));
+        }
+    }
+    data_lines(timestamp_ms, &text)
+}
+
+/// The timestamp line and `text` cut into 64-character lines, with sums.
+fn data_lines(timestamp_ms: u32, text: &[u8]) -> Vec<String> {
+    let stamp = String::from_utf8(encode(timestamp_ms, 4).unwrap()).unwrap();
     let mut lines = vec![summed(&stamp)];
     lines.extend(
         text.chunks(64)

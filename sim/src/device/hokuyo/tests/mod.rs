@@ -761,6 +761,10 @@ fn host_bytes() -> impl Strategy<Value = Vec<u8>> {
         b"ME0000108003100\n",
         b"MS0000108000005\n",
         b"GD0044072501\n",
+        b"ND0000108001000\n",
+        b"NE0000108002003\n",
+        b"HD0000108001\n",
+        b"HE0500060003\n",
         b"BM\n",
         b"QT\n",
         b"RS\n",
@@ -786,6 +790,7 @@ proptest! {
         utm in any::<bool>(),
         rs232 in any::<bool>(),
         scip1 in any::<bool>(),
+        multi_echo_fraction in prop::num::f64::ANY,
         steps in prop::collection::vec((host_bytes(), 0.0f64..0.06), 1..40),
     ) {
         let model = if utm { HokuyoModel::Utm30lx } else { HokuyoModel::Urg04lx };
@@ -794,6 +799,7 @@ proptest! {
             starts_in_scip1: scip1,
             abnormal_after_scans: Some(5),
             dropout_probability: 0.1,
+            multi_echo_fraction,
             faults: Faults { corrupt_every: 2, garbage_every: 3, seed: 1 },
             ..HokuyoOptions::default()
         };
@@ -835,3 +841,5 @@ fn model_names_round_trip() {
     );
     assert_eq!(HokuyoModel::from_name("ust-10lx"), None);
 }
+
+mod multi_echo;
