@@ -213,10 +213,12 @@ impl Line {
         }
     }
 
-    /// Carries out the driver's outputs in order, as the node's port does
+    /// Carries out the driver's outputs in order, close to the node's port
     /// (nodes/src/ingest/device_port.rs): scans into `rec`, faults noted
-    /// there, a reconnect as a fresh `connect` that drops the outputs after
-    /// it (the device stays powered, as behind a reopened USB port).
+    /// there, a reconnect as a fresh `connect` (the device stays powered, as
+    /// behind a reopened USB port). Unlike the port, the outputs after a
+    /// reconnect are dropped: the bench counts no reconnects in normal runs
+    /// and fails its replay check if one changes the scans.
     fn apply(
         &mut self,
         driver: &mut dyn DeviceDriver,
@@ -349,7 +351,7 @@ fn feed(driver: &mut dyn DeviceDriver, chunk: &Chunk, outputs: &mut Vec<DriverOu
         driver.receive(&chunk.bytes, chunk.at, outputs);
     }
     driver.poll(chunk.at, outputs);
-    // The port drops what follows a reconnect, as [`Line::apply`] does.
+    // What follows a reconnect is dropped, as [`Line::apply`] does.
     if let Some(i) = outputs
         .iter()
         .position(|o| matches!(o, DriverOutput::Reconnect(_)))

@@ -179,8 +179,9 @@ impl Session<'_> {
         }
     }
 
-    /// Carries out the driver's outputs in order; stops at the first that
-    /// ends the session.
+    /// Carries out the driver's outputs in order. After one that ends the
+    /// session (a failed write, a reconnect) the port actions are skipped and
+    /// the rest still reach the node; the first end is returned.
     fn apply(&mut self, outputs: &mut Vec<DriverOutput>) -> Option<Ended> {
         let mut ended = None;
         for output in outputs.drain(..) {

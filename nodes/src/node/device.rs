@@ -92,10 +92,17 @@ fn report(ctx: &NodeContext, output: DriverOutput, tx: &SyncSender<Input>) {
         DriverOutput::State(state) => {
             tracing::info!("device state: {state:?}");
             match state {
-                // A new connection: what the last device said no longer holds.
+                // What the last device said no longer holds.
                 DeviceState::Connecting => ctx.metrics.remove_labels("device.", &KEPT_LABELS),
-                // Its scans are not merged with the next connection's.
-                DeviceState::Disconnected => offer(ctx, tx, Input::Flush),
+                DeviceState::Disconnected => {
+                    ctx.metrics.remove_labels("device.", &KEPT_LABELS);
+                    // Its scans are not merged with the next connection's
+                    // (rare, so waiting for room is fine). At a stop the
+                    // unfinished cloud is not published.
+                    if !ctx.stopping() {
+                        let _ = tx.send(Input::Flush);
+                    }
+                }
                 _ => {}
             }
             ctx.metrics
@@ -180,7 +187,7 @@ fn assemble(
             Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => break,
         }
-        assembler.expire(host_now());
+        assembler.expire(host_now(), &mut clouds);
         for cloud in clouds.drain(..) {
             publish(ctx, out, &cloud);
         }

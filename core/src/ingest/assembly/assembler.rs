@@ -93,6 +93,8 @@ pub struct CloudAssembler {
     track: JointTrack,
     waiting: VecDeque<RangeScan>,
     waiting_rays: usize,
+    /// Waiting scans still to go through before a flushed cloud completes.
+    flush_after: usize,
     partial: Partial,
     scans_seen: u64,
     stats: AssemblyStats,
@@ -119,6 +121,7 @@ impl CloudAssembler {
             config,
             waiting: VecDeque::new(),
             waiting_rays: 0,
+            flush_after: 0,
             partial: Partial::default(),
             scans_seen: 0,
             stats: AssemblyStats::default(),
@@ -151,6 +154,7 @@ impl CloudAssembler {
         while self.waiting_rays > MAX_WAITING_RAYS && self.waiting.len() > 1 {
             self.pop_waiting();
             self.stats.mount_angle_missing += 1;
+            self.after_waiting(out);
         }
         self.place_waiting(out);
     }
@@ -159,7 +163,12 @@ impl CloudAssembler {
     /// the device went away, so that its scans are not merged with scans
     /// from after the reconnect.
     pub fn flush(&mut self, out: &mut Vec<AssembledCloud>) {
-        self.complete(out);
+        // Scans still waiting for joint samples belong to the cloud too: it is
+        // completed once the last of them is placed or dropped.
+        self.flush_after = self.waiting.len();
+        if self.flush_after == 0 {
+            self.complete(out);
+        }
     }
 
     /// Points in the cloud being filled (lost if the assembler is dropped).
@@ -173,8 +182,19 @@ impl CloudAssembler {
         Some(scan)
     }
 
+    /// After a waiting scan was placed or dropped: completes a flushed cloud
+    /// once the scans that were waiting at the flush are all through.
+    fn after_waiting(&mut self, out: &mut Vec<AssembledCloud>) {
+        if self.flush_after > 0 {
+            self.flush_after -= 1;
+            if self.flush_after == 0 {
+                self.complete(out);
+            }
+        }
+    }
+
     /// Drops scans that have waited longer than allowed for joint samples.
-    pub fn expire(&mut self, now: HostTime) {
+    pub fn expire(&mut self, now: HostTime, out: &mut Vec<AssembledCloud>) {
         let limit = self.config.max_joint_wait_ns;
         while self
             .waiting
@@ -183,6 +203,7 @@ impl CloudAssembler {
         {
             self.pop_waiting();
             self.stats.mount_angle_missing += 1;
+            self.after_waiting(out);
         }
     }
 
@@ -195,11 +216,13 @@ impl CloudAssembler {
                 Coverage::Lost => {
                     self.pop_waiting();
                     self.stats.mount_angle_missing += 1;
+                    self.after_waiting(out);
                 }
                 Coverage::Known => {
                     if let Some(scan) = self.pop_waiting() {
                         self.place(&scan, out);
                     }
+                    self.after_waiting(out);
                 }
             }
         }

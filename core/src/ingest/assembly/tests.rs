@@ -223,14 +223,17 @@ fn scan_and_time_windows_group_as_configured() {
     assert_eq!(out.iter().map(|c| c.scans).collect::<Vec<_>>(), [10, 10]);
 }
 
-fn on_joint() -> CloudAssembler {
-    let mount = MovingMount {
+fn joint_mount() -> MovingMount {
+    MovingMount {
         base: MountPose::default(),
         axis: DVec3::Z,
         sensor: MountPose::default(),
         motion: MountMotion::Joint { name: "pan".into() },
-    };
-    CloudAssembler::new(AssemblyConfig::fixed(mount)).unwrap()
+    }
+}
+
+fn on_joint() -> CloudAssembler {
+    CloudAssembler::new(AssemblyConfig::fixed(joint_mount())).unwrap()
 }
 
 #[test]
@@ -266,9 +269,9 @@ fn scans_the_joint_samples_cannot_cover_are_dropped_and_counted() {
     // Waiting too long: expired.
     assembler.push_scan(scan(2, T0 + 700 * MS, vec![ray(0.0, 1.0, 0)]), &mut out);
     let received = HostTime::new(700 * MS + 1_000, T0 + 700 * MS);
-    assembler.expire(received.plus_ns(400 * MS));
+    assembler.expire(received.plus_ns(400 * MS), &mut out);
     assert_eq!(assembler.stats().mount_angle_missing, 2);
-    assembler.expire(received.plus_ns(600 * MS));
+    assembler.expire(received.plus_ns(600 * MS), &mut out);
     assert_eq!(assembler.stats().mount_angle_missing, 3);
     assert!(out.is_empty());
     // Refused samples are counted.
@@ -297,4 +300,29 @@ fn a_joint_track_counts_sweeps_at_reversals_and_full_turns() {
     assert!((a - 39.0 * 0.4).abs() < 1e-9, "{a}");
     assert_eq!(sweep, (39.0 * 0.4 / TAU).floor() as u64);
     assert!(turn.at(40 * MS).is_none(), "never extrapolated");
+}
+
+#[test]
+fn a_flush_completes_the_cloud_once_the_scans_waiting_at_it_are_through() {
+    let mut assembler = CloudAssembler::new(AssemblyConfig {
+        window: CloudWindow::Time(10_000 * MS),
+        ..AssemblyConfig::fixed(joint_mount())
+    })
+    .unwrap();
+    let mut out = Vec::new();
+    assembler.push_joint(T0, 0.0, &mut out);
+    assembler.push_joint(T0 + 10 * MS, 0.0, &mut out);
+    assembler.push_scan(scan(0, T0 + 5 * MS, vec![ray(0.0, 1.0, 0)]), &mut out);
+    // Waits for samples after its last ray.
+    assembler.push_scan(scan(1, T0 + 20 * MS, vec![ray(0.0, 1.0, 0)]), &mut out);
+    assembler.flush(&mut out);
+    assert!(out.is_empty(), "scan 1 still belongs to the flushed cloud");
+    assembler.push_joint(T0 + 30 * MS, 0.0, &mut out);
+    assert_eq!(out.len(), 1);
+    assert_eq!(out[0].scans, 2);
+    // The next scan starts a new cloud.
+    assembler.push_scan(scan(2, T0 + 25 * MS, vec![ray(0.0, 1.0, 0)]), &mut out);
+    assembler.flush(&mut out);
+    assert_eq!(out.len(), 2);
+    assert_eq!(out[1].scans, 1);
 }

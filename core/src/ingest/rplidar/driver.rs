@@ -157,13 +157,18 @@ impl RplidarDriver {
     }
 
     fn send(&mut self, query: Query, now: HostTime, out: &mut Vec<DriverOutput>) {
+        self.ask(query, false, now, out);
+    }
+
+    /// Writes `query`'s request and awaits its answer (`retried`: the second time).
+    fn ask(&mut self, query: Query, retried: bool, now: HostTime, out: &mut Vec<DriverOutput>) {
         let bytes = query.request(self.plan.as_ref());
         self.reader.reset();
         self.write(bytes, out);
         self.phase = Phase::Awaiting {
             query,
             sent_ns: now.monotonic_ns,
-            retried: false,
+            retried,
         };
     }
 
@@ -397,7 +402,9 @@ impl RplidarDriver {
         // from now (never younger than it is).
         let last_offset = revolution.rays.last().map_or(0, |r| u64::from(r.offset_ns));
         let last_sample = revolution.stamp_ns.saturating_add(last_offset);
-        let lag = now.unix_ns.saturating_sub(last_sample);
+        // Measured on the wall clock, applied to both: bounded by a second
+        // (a slow revolution) so that a wall-clock step cannot skew it.
+        let lag = now.unix_ns.saturating_sub(last_sample).min(1_000_000_000);
         let received = HostTime::new(
             now.monotonic_ns.saturating_sub(lag),
             now.unix_ns.saturating_sub(lag),
@@ -428,14 +435,7 @@ impl RplidarDriver {
         if retried {
             return self.fail(format!("no answer to {} (asked twice)", query.name()), out);
         }
-        let bytes = query.request(self.plan.as_ref());
-        self.reader.reset();
-        self.write(bytes, out);
-        self.phase = Phase::Awaiting {
-            query,
-            sent_ns: now.monotonic_ns,
-            retried: true,
-        };
+        self.ask(query, true, now, out);
     }
 }
 

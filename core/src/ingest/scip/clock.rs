@@ -90,14 +90,24 @@ impl ClockSync {
 pub const MAX_STAMP_LAG_NS: u64 = 100_000_000;
 
 /// How far a mapped first ray may lie after `arrival - sweep`: the sensor's
-/// 1 ms stamp resolution and the rear-centre assumption's slack.
+/// 1 ms stamp resolution and the rear-centre assumption's slack (to which
+/// half the sync's round trip and the clocks' drift since it are added).
 pub const MAX_STAMP_LEAD_NS: u64 = 5_000_000;
+
+/// How fast the sensor's crystal may drift from the host's clock, in parts
+/// per million: the window widens by this much of the time since the sync.
+pub const MAX_DRIFT_PPM: u64 = 100;
 
 /// Stamps scans on the host's wall clock.
 #[derive(Debug, Clone, Default)]
 pub struct ScanStamper {
     offset_ns: Option<i128>,
     fallen_back: bool,
+    /// Half the sync's best round trip: the offset's own uncertainty.
+    half_rtt_ns: u64,
+    /// When the offset was measured (host wall clock; `u64::MAX`: no drift
+    /// allowance).
+    synced_unix_ns: u64,
 }
 
 /// What the stamper needs to know about one scan.
@@ -111,15 +121,30 @@ pub struct ScanTiming {
     pub sweep_ns: u64,
     /// The reply's time on the line (0 over USB).
     pub transfer_ns: u64,
+    /// How long a complete scan may wait in the sensor before it is sent
+    /// (a polled scan: up to a revolution; streamed: 0).
+    pub held_ns: u64,
     /// When the scan's last byte arrived.
     pub arrival: HostTime,
 }
 
 impl ScanStamper {
-    /// Starts a new mapping (after a sync; `None` when the sync failed).
+    /// Starts a new mapping (`None` when the sync failed), with no allowance
+    /// for the sync's round trip or drift (see [`set_sync`](Self::set_sync)).
     pub fn set_offset(&mut self, offset_ns: Option<i128>) {
         self.offset_ns = offset_ns;
         self.fallen_back = false;
+        self.half_rtt_ns = 0;
+        self.synced_unix_ns = u64::MAX;
+    }
+
+    /// [`set_offset`](Self::set_offset) from a sync whose best round trip
+    /// took `rtt_ns`, finished at `unix_ns`: the plausibility window widens by
+    /// half that round trip and by [`MAX_DRIFT_PPM`] of the time since.
+    pub fn set_sync(&mut self, offset_ns: Option<i128>, rtt_ns: u64, unix_ns: u64) {
+        self.set_offset(offset_ns);
+        self.half_rtt_ns = rtt_ns / 2;
+        self.synced_unix_ns = unix_ns;
     }
 
     /// Whether stamps come from arrival times (no sync, or a mismatch).
@@ -129,11 +154,12 @@ impl ScanStamper {
 
     /// The first ray's wall-clock time: sensor time + offset + first-ray
     /// delay. The last ray cannot come after the scan's arrival, nor much
-    /// before it: a mapped first ray later than `arrival - sweep +`
-    /// [`MAX_STAMP_LEAD_NS`] or earlier than `arrival - sweep - transfer -`
-    /// [`MAX_STAMP_LAG_NS`] counts `clock_mismatch` and switches to arrival
-    /// stamps (arrival - sweep - transfer) until the next
-    /// [`set_offset`](Self::set_offset).
+    /// before it: with `slack` = half the sync's round trip + drift since
+    /// it, a mapped first ray later than `arrival - sweep +`
+    /// [`MAX_STAMP_LEAD_NS`] `+ slack` or earlier than `arrival - sweep -
+    /// transfer - held -` [`MAX_STAMP_LAG_NS`] `- slack` counts
+    /// `clock_mismatch` and switches to arrival stamps (arrival - sweep -
+    /// transfer) until the next [`set_offset`](Self::set_offset).
     pub fn stamp(&mut self, timing: &ScanTiming, stats: &mut DeviceStats) -> u64 {
         if let Some(mapped) = self.mapped(timing) {
             if self.plausible(mapped, timing) {
@@ -158,9 +184,16 @@ impl ScanStamper {
     }
 
     fn plausible(&self, mapped: i128, timing: &ScanTiming) -> bool {
+        let since_sync = timing.arrival.unix_ns.saturating_sub(self.synced_unix_ns);
+        let drift = since_sync / 1_000_000 * MAX_DRIFT_PPM;
+        let slack = i128::from(self.half_rtt_ns) + i128::from(drift);
         let expected = i128::from(timing.arrival.unix_ns) - i128::from(timing.sweep_ns);
-        let latest = expected + i128::from(MAX_STAMP_LEAD_NS);
-        let earliest = expected - i128::from(timing.transfer_ns) - i128::from(MAX_STAMP_LAG_NS);
+        let latest = expected + i128::from(MAX_STAMP_LEAD_NS) + slack;
+        let earliest = expected
+            - i128::from(timing.transfer_ns)
+            - i128::from(timing.held_ns)
+            - i128::from(MAX_STAMP_LAG_NS)
+            - slack;
         mapped >= 0 && mapped <= latest && mapped >= earliest
     }
 }

@@ -93,6 +93,9 @@ pub(super) struct Session {
     pub announced: bool,
     /// Why the driver is rebooting the sensor.
     pub recovery: String,
+    /// The timestamp of the last polled scan: a poll answered before the
+    /// next revolution completes gets the same scan again.
+    pub last_polled_ms: Option<u32>,
 }
 
 /// The Hokuyo SCIP 2.0 driver (URG-04LX and other SCIP 2.0 sensors over USB

@@ -332,7 +332,8 @@ impl ScipDriver {
             );
         } else {
             let offset = self.session.sync.offset_ns();
-            self.session.stamper.set_offset(offset);
+            let rtt_ns = self.session.sync.best_rtt_ns().unwrap_or(0);
+            self.session.stamper.set_sync(offset, rtt_ns, now.unix_ns);
             self.send(&Command::Tm(TimeMode::Leave), Phase::TimeLeave, now, out);
         }
     }

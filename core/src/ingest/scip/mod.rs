@@ -51,7 +51,8 @@ mod sum;
 mod tests;
 
 pub use clock::{
-    ClockSync, DeviceClock, ScanStamper, ScanTiming, MAX_STAMP_LAG_NS, MAX_STAMP_LEAD_NS, WRAP_MS,
+    ClockSync, DeviceClock, ScanStamper, ScanTiming, MAX_DRIFT_PPM, MAX_STAMP_LAG_NS,
+    MAX_STAMP_LEAD_NS, WRAP_MS,
 };
 pub use command::{Command, CommandError, ScanKind, ScanRequest, Tag, TimeMode, MAX_ECHOES};
 pub use config::{Link, ScanCommand, ScipConfig};

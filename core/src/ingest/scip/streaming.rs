@@ -155,9 +155,20 @@ impl ScipDriver {
         let Some(rays) = plan.rays(&data) else {
             return self.dropped_scan("incomplete_scan", now, out);
         };
+        let polled = self.phase == Phase::Polling;
+        if polled && self.session.last_polled_ms == Some(data.timestamp_ms) {
+            // Asked again before the next revolution was done: the same scan.
+            self.stats.note("repeated_scan");
+            return self.send_scan_request(now, out);
+        }
+        if polled {
+            self.session.last_polled_ms = Some(data.timestamp_ms);
+        }
         // On RS-232 the reply's bytes take time on the line (8N1: 10 bits a
-        // byte); over USB that time is negligible.
-        let reply_bytes: u64 = reply.lines.iter().map(|l| l.len() as u64 + 1).sum();
+        // byte: the echo, every line with its LF, the closing LF); over USB
+        // that time is negligible.
+        let line_bytes: u64 = reply.lines.iter().map(|l| l.len() as u64 + 1).sum();
+        let reply_bytes = line_bytes + reply.echo.len() as u64 + 2;
         let transfer_ns = self.session.baud.filter(|b| *b > 0).map_or(0, |b| {
             reply_bytes.saturating_mul(10_000_000_000) / u64::from(b)
         });
@@ -166,6 +177,16 @@ impl ScipDriver {
             first_ray_delay_ns: plan.first_ray_delay_ns(),
             sweep_ns: plan.sweep_ns(),
             transfer_ns,
+            // A poll is answered with the last complete revolution, which may
+            // have ended up to a revolution before the request.
+            held_ns: if polled {
+                self.session
+                    .geometry
+                    .as_ref()
+                    .map_or(0, |g| g.revolution_ns().max(0.0) as u64)
+            } else {
+                0
+            },
             arrival: now,
         };
         let stamp_ns = self.session.stamper.stamp(&timing, &mut self.stats);

@@ -62,6 +62,7 @@ fn stamp_maps_device_time_and_adds_the_first_ray_delay() {
         first_ray_delay_ns: 16_000_000,
         sweep_ns: 66_000_000,
         transfer_ns: 0,
+        held_ns: 0,
         // The last ray 16 + 66 ms after the stamp, its bytes 10 ms later.
         arrival: HostTime::new(0, 1_000_000_000_000 + 2_000_000_000 + 92_000_000),
     };
@@ -82,6 +83,7 @@ fn implausible_stamp_falls_back_until_the_next_sync() {
         first_ray_delay_ns: 0,
         sweep_ns: 70_000_000,
         transfer_ns: 0,
+        held_ns: 0,
         arrival,
     };
     assert_eq!(
@@ -122,6 +124,24 @@ fn implausible_stamp_falls_back_until_the_next_sync() {
         stamper.stamp(&early, &mut stats),
         10_000_000_000 - 70_000_000
     );
+    assert_eq!(stats.errors("clock_mismatch"), 3);
+    // A polled scan may have waited a revolution in the sensor.
+    stamper.set_offset(Some(0));
+    let held = ScanTiming {
+        device_ms: 9_780,
+        held_ns: 100_000_000,
+        ..future
+    };
+    assert_eq!(stamper.stamp(&held, &mut stats), 9_780_000_000);
+    assert_eq!(stats.errors("clock_mismatch"), 3);
+    // Drift since the sync widens the window: 100 ppm of 10 s is 1 ms, so the
+    // first ray that was 1 ms too late above is plausible now.
+    stamper.set_sync(Some(0), 0, 0);
+    let drifted = ScanTiming {
+        device_ms: 9_936,
+        ..future
+    };
+    assert_eq!(stamper.stamp(&drifted, &mut stats), 9_936_000_000);
     assert_eq!(stats.errors("clock_mismatch"), 3);
     // On a slow line the reply's transfer time widens the window by itself.
     stamper.set_offset(Some(0));
