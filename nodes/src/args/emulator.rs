@@ -7,6 +7,7 @@ use crate::ingest::EmulatorLine;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use shroud_core::format::parse_triangle_mesh;
+use shroud_sim::device::hokuyo::HokuyoModel;
 use shroud_sim::device::{EmulatorOptions, Faults, MeshRays, SerialDeviceEmulator, MODELS};
 use shroud_sim::{Bvh, TableTop, Terrain, DEFAULT_CYLINDER_SEGMENTS, DEFAULT_TERRAIN_CELLS};
 use std::path::PathBuf;
@@ -116,7 +117,7 @@ impl EmulatorArgs {
             ("--abnormal-after", self.abnormal_after.is_some()),
         ];
         for (flag, given) in hokuyo_only {
-            if given && !model.starts_with("urg-") && !model.starts_with("utm-") {
+            if given && HokuyoModel::from_name(model).is_none() {
                 bail!("{flag} applies to the Hokuyo models (urg-04lx, utm-30lx) only");
             }
         }

@@ -4,6 +4,7 @@
 use super::error::AssemblyError;
 use super::joint_track::JointTrack;
 use super::motion::{MountMotion, MovingMount};
+use super::pose::MountPose;
 use super::window::CloudWindow;
 use crate::ingest::device::{HostTime, RangeScan};
 use crate::ingest::Scan;
@@ -256,6 +257,9 @@ impl CloudAssembler {
             };
             rays.push((ray, time, angle, sweep));
         }
+        // A fixed mount (and a unit between joint samples) keeps its angle
+        // from ray to ray: its pose is composed once, not per ray.
+        let mut pose: Option<(f64, MountPose)> = None;
         for (ray, time, angle, sweep) in rays {
             let key = match self.config.window {
                 CloudWindow::Sweep => sweep,
@@ -274,12 +278,12 @@ impl CloudAssembler {
                 ray.range as f64 * (ray.angle as f64).sin(),
                 0.0,
             );
-            let point = self
-                .config
-                .mount
-                .pose_at_angle(angle)
-                .apply(local)
-                .as_vec3();
+            let at = match pose {
+                Some((a, p)) if a == angle => p,
+                _ => self.config.mount.pose_at_angle(angle),
+            };
+            pose = Some((angle, at));
+            let point = at.apply(local).as_vec3();
             if !point.is_finite() {
                 self.stats.invalid_rays += 1;
                 continue;
