@@ -620,7 +620,8 @@ fn ingest_socketcan_when_an_interface_exists() {
         let mut frames = Vec::new();
         let start = Instant::now();
         while frames.len() < 8 && start.elapsed() < Duration::from_secs(2) {
-            if let Some(f) = source.recv(Duration::from_millis(100)).unwrap() {
+            if let Some(timed) = source.recv(Duration::from_millis(100)).unwrap() {
+                let f = timed.frame;
                 if sensor.classify(&f).is_some() {
                     frames.push(f);
                 }

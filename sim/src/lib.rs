@@ -9,6 +9,7 @@
 //! of a triangle mesh, with range noise and dropouts) around the table-top and
 //! terrain meshes ([`TableTop::mesh`], [`Terrain::mesh`]) or any user mesh.
 
+pub mod can_device;
 pub mod device;
 mod error;
 mod mesh_scene;

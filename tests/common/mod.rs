@@ -3,6 +3,8 @@
 //! liveness checks.
 #![allow(dead_code)]
 
+pub mod device_rig;
+
 use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc::{channel, Receiver};

@@ -9,7 +9,12 @@
 //!   ([`device::DeviceDriver`]) and the range scans they deliver;
 //! - [`scip`], [`rplidar`], [`benewake`]: the drivers of Hokuyo SCIP 2.0
 //!   lidars, Slamtec RPLIDARs and Benewake TFmini-family rangefinders;
-//! - [`assembly`]: range scans placed through a (moving) mount into 3D clouds.
+//! - [`assembly`]: range scans placed through a (moving) mount into 3D clouds;
+//! - [`dbc`]: CAN signal databases (DBC files) and the generic signal codec;
+//! - [`can_device`]: the sans-I/O contract of real CAN sensors' drivers
+//!   ([`can_device::CanDeviceDriver`]); [`ars408`] and [`benewake_can`]: the
+//!   drivers of the Continental ARS408-21 radar and the Benewake CAN
+//!   rangefinders, which read their signals through a DBC.
 //!
 //! Every decoder is streaming and never panics on any input. The protocol
 //! decoders return named [`IngestError`]s and count them per [`ErrorKind`] in
@@ -18,9 +23,13 @@
 // `!(x > 0.0)` deliberately rejects NaN as well, which `x <= 0.0` would let through.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod ars408;
 pub mod assembly;
 pub mod benewake;
+pub mod benewake_can;
 pub mod can;
+pub mod can_device;
+pub mod dbc;
 pub mod device;
 mod error;
 pub mod rplidar;

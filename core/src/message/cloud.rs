@@ -2,6 +2,9 @@
 //! raw little-endian f32 xyz (12 bytes a point) with optional f32 intensity.
 
 use super::blob::{bytes_to_f32s, encode, f32s_to_bytes};
+use super::channels::{
+    blobs_to_channels, channels_to_blobs, check_channels, ChannelBlobs, PointChannel,
+};
 use super::error::MessageError;
 use super::SCHEMA_VERSION;
 use serde::{Deserialize, Serialize};
@@ -41,6 +44,10 @@ pub struct CloudMessage {
     /// `points * 4` bytes of little-endian f32 intensity, or absent.
     #[serde(with = "serde_bytes", default, skip_serializing_if = "Option::is_none")]
     pub intensity: Option<Vec<u8>>,
+    /// Further per-point channels by name, `points * 4` bytes of
+    /// little-endian f32 each (see [`PointChannel`]), or absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub channels: Option<ChannelBlobs>,
     /// `points * 12` bytes: x, y, z as little-endian f32, point after point.
     /// Last in the map (see [`CloudView::aligned`](super::CloudView::aligned)).
     #[serde(with = "serde_bytes")]
@@ -64,7 +71,23 @@ impl CloudMessage {
             pose,
             points: f32s_to_bytes(points.iter().flatten().copied()),
             intensity: None,
+            channels: None,
         }
+    }
+
+    /// The same message with these channels (none: no `channels` field).
+    pub fn with_channels(mut self, channels: &[PointChannel]) -> Self {
+        self.channels = channels_to_blobs(channels);
+        self
+    }
+
+    /// The channels, checked against the point count (empty when absent).
+    pub fn channel_arrays(&self) -> Result<Vec<PointChannel>, MessageError> {
+        let Some(blobs) = &self.channels else {
+            return Ok(Vec::new());
+        };
+        check_channels(blobs, self.points.len() / 12)?;
+        Ok(blobs_to_channels(blobs))
     }
 
     pub fn with_intensity(mut self, intensity: &[f32]) -> Self {
@@ -124,6 +147,7 @@ mod tests {
             &[[1.0, 2.0, 3.0], [-4.5, 0.25, 1e-3]],
         )
         .with_intensity(&[0.5, 1.0])
+        .with_channels(&[PointChannel::new("rcs", vec![5.0, -2.0])])
     }
 
     #[test]
@@ -146,6 +170,7 @@ mod tests {
             "pose",
             "points",
             "intensity",
+            "channels",
         ] {
             assert!(value.contains_key(key), "{key}");
         }
@@ -173,6 +198,15 @@ mod tests {
         assert!(matches!(
             CloudMessage::from_bytes(&msg.to_bytes().unwrap()),
             Err(MessageError::Version { .. })
+        ));
+        let mut msg = sample();
+        msg.channels.as_mut().unwrap().get_mut("rcs").unwrap().pop();
+        assert!(matches!(
+            CloudMessage::from_bytes(&msg.to_bytes().unwrap()),
+            Err(MessageError::Count {
+                field: "channels",
+                ..
+            })
         ));
         let mut msg = sample();
         msg.intensity = Some(vec![0; 4]);

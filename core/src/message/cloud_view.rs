@@ -2,6 +2,7 @@
 //! straight from `&[[f32; 3]]` into a transport buffer and decoding straight from
 //! a received payload. Same wire layout as [`CloudMessage`](super::CloudMessage).
 
+use super::channels::{channels_to_blobs, check_channels, ChannelBlobs, PointChannel};
 use super::error::MessageError;
 use super::{check_version, CloudMessage, SensorPose, SCHEMA_VERSION};
 use serde::{Deserialize, Serialize};
@@ -32,6 +33,9 @@ pub struct CloudView<'a> {
         skip_serializing_if = "Option::is_none"
     )]
     pub intensity: Option<Cow<'a, [u8]>>,
+    /// See [`CloudMessage::channels`]: small (radar returns), so owned.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub channels: Option<ChannelBlobs>,
     /// 0 to 3 zero bytes that put the `points` blob on a 4-byte boundary of the
     /// payload (see [`Self::aligned`]); absent when none are needed. Decoders
     /// ignore it.
@@ -65,7 +69,14 @@ impl<'a> CloudView<'a> {
             align: None,
             points: le_bytes(bytemuck::cast_slice(points)),
             intensity: None,
+            channels: None,
         }
+    }
+
+    /// The same message with these channels (copied; none: no field).
+    pub fn with_channels(mut self, channels: &[PointChannel]) -> Self {
+        self.channels = channels_to_blobs(channels);
+        self
     }
 
     /// The same message with one intensity per point (no copy on little-endian
@@ -159,6 +170,9 @@ impl<'a> CloudView<'a> {
                 });
             }
         }
+        if let Some(channels) = &view.channels {
+            check_channels(channels, view.len())?;
+        }
         Ok(view)
     }
 
@@ -203,9 +217,11 @@ impl<'a> CloudView<'a> {
             pose: self.pose,
             points: self.points.to_vec(),
             intensity: self.intensity.as_ref().map(|i| i.to_vec()),
+            channels: self.channels.clone(),
         };
         msg.point_array()?;
         msg.intensity_array()?;
+        msg.channel_arrays()?;
         Ok(msg)
     }
 }

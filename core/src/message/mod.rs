@@ -5,6 +5,7 @@
 
 mod blend_command;
 mod blob;
+mod channels;
 mod cloud;
 mod cloud_view;
 mod collision;
@@ -19,6 +20,10 @@ mod topic;
 
 pub use blend_command::BlendCommandMessage;
 pub use blob::{encode_into, encoded_len};
+pub use channels::{
+    blobs_to_channels, channels_to_blobs, check_channels, ChannelBlobs, PointChannel, MAX_CHANNELS,
+    MAX_CHANNEL_NAME,
+};
 pub use cloud::{CloudMessage, SensorPose};
 pub use cloud_view::CloudView;
 pub use collision::{CollisionMessage, GuardVerdict, LinkClearance};

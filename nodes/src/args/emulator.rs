@@ -1,17 +1,29 @@
-//! Options of an emulated serial range sensor (`shroud sensor-sim --device`
-//! and the `device-sim` node): the model, the world it measures, its mount,
-//! and the faults it shows.
+//! Options of an emulated range sensor (`shroud sensor-sim --device` and the
+//! `device-sim` node): the model, the world it measures, its mount, and the
+//! faults it shows. A CAN device (ARS408, Benewake CAN) is emulated behind an
+//! emulated SLCAN adapter, itself a serial device.
 
+use super::can_device::RangefinderArg;
 use super::mount::MountArgs;
 use crate::ingest::EmulatorLine;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use shroud_core::format::parse_triangle_mesh;
+use shroud_core::ingest::assembly::MountPose;
+use shroud_sim::can_device::{
+    can_emulator, CanDeviceEmulator, CanEmulatorOptions, CanWorld, RangefinderSpec, CAN_MODELS,
+};
 use shroud_sim::device::hokuyo::HokuyoModel;
-use shroud_sim::device::{EmulatorOptions, Faults, MeshRays, SerialDeviceEmulator, MODELS};
+use shroud_sim::device::{
+    EmulatorOptions, Faults, MeshRays, SerialDeviceEmulator, SlcanAdapter, MODELS,
+};
+use shroud_sim::MovingSpheres;
 use shroud_sim::{Bvh, TableTop, Terrain, DEFAULT_CYLINDER_SEGMENTS, DEFAULT_TERRAIN_CELLS};
 use std::path::PathBuf;
 use std::sync::Arc;
+
+/// Makes a fresh emulator at each power-up.
+pub type EmulatorMaker = Box<dyn FnMut() -> Result<Box<dyn SerialDeviceEmulator>> + Send>;
 
 #[derive(Debug, Clone, Args)]
 pub struct EmulatorArgs {
@@ -56,6 +68,17 @@ pub struct EmulatorArgs {
     /// it answers `0L` until rebooted by two RB commands).
     #[arg(long)]
     pub abnormal_after: Option<u64>,
+    /// CAN devices: the ARS408's sensor ID (0..=7; its ids move by 0x10 per unit).
+    #[arg(long, default_value_t = 0)]
+    pub sensor_id: u8,
+    /// CAN devices: a Benewake rangefinder on the bus, `NAME@ID:x,y,z,roll,pitch,yaw`
+    /// (repeat for several; default one at the model's id, at --mount).
+    #[arg(long = "rangefinder", allow_hyphen_values = true)]
+    pub rangefinders: Vec<String>,
+    /// CAN devices: leave one frame out of the middle of every n-th
+    /// measurement cycle (0 = never), as a bus that loses frames does.
+    #[arg(long, default_value_t = 0)]
+    pub drop_frame_every: u64,
 }
 
 impl Default for EmulatorArgs {
@@ -74,6 +97,9 @@ impl Default for EmulatorArgs {
             scip1: false,
             clock_start_ms: 0,
             abnormal_after: None,
+            sensor_id: 0,
+            rangefinders: Vec::new(),
+            drop_frame_every: 0,
         }
     }
 }
@@ -86,12 +112,40 @@ impl EmulatorArgs {
         model: &str,
         corrupt_every: u64,
         seed: u64,
-    ) -> Result<impl FnMut() -> Result<Box<dyn SerialDeviceEmulator>>> {
+    ) -> Result<EmulatorMaker> {
+        if CAN_MODELS.contains(&model) {
+            if corrupt_every != 0 {
+                bail!("--corrupt-every applies to the serial models; a CAN bus checks its own frames (use --drop-frame-every)");
+            }
+            let mut make = self.can_maker(model, seed)?;
+            return Ok(Box::new(move || -> Result<Box<dyn SerialDeviceEmulator>> {
+                let device = make()?;
+                let bitrate = can_bitrate(device.model());
+                Ok(Box::new(SlcanAdapter::new(device, bitrate)))
+            })
+                as Box<
+                    dyn FnMut() -> Result<Box<dyn SerialDeviceEmulator>> + Send,
+                >);
+        }
         if !MODELS.contains(&model) {
             bail!(
-                "unknown device model {model:?} (one of {})",
-                MODELS.join(", ")
+                "unknown device model {model:?} (one of {}, {})",
+                MODELS.join(", "),
+                CAN_MODELS.join(", ")
             );
+        }
+        let can_only = [
+            ("--sensor-id", self.sensor_id != 0),
+            ("--rangefinder", !self.rangefinders.is_empty()),
+            ("--drop-frame-every", self.drop_frame_every != 0),
+        ];
+        for (flag, given) in can_only {
+            if given {
+                bail!(
+                    "{flag} applies to the CAN models ({}) only",
+                    CAN_MODELS.join(", ")
+                );
+            }
         }
         for (name, value) in [
             ("--stall-for", self.stall_for),
@@ -140,7 +194,7 @@ impl EmulatorArgs {
         };
         let model = model.to_owned();
         let mut power_ups = 0u64;
-        Ok(move || {
+        Ok(Box::new(move || {
             power_ups += 1;
             // Each power-up measures the same world on the same wall clock.
             let rays = MeshRays::new(bvh.clone(), mount.clone(), crate::transport::unix_ns())
@@ -151,7 +205,59 @@ impl EmulatorArgs {
             };
             shroud_sim::device::emulator(&model, Box::new(rays), &options)
                 .map_err(anyhow::Error::msg)
-        })
+        }))
+    }
+
+    /// Checks the options and loads the world, then returns a maker of fresh
+    /// CAN device emulators of `model` (one per power-up), without a transport.
+    pub fn can_maker(
+        &self,
+        model: &str,
+        seed: u64,
+    ) -> Result<impl FnMut() -> Result<Box<dyn CanDeviceEmulator>> + Send> {
+        let serial_only = [
+            ("--rs232", self.rs232.is_some()),
+            ("--scip1", self.scip1),
+            ("--clock-start-ms", self.clock_start_ms != 0),
+            ("--abnormal-after", self.abnormal_after.is_some()),
+            ("--garbage-every", self.garbage_every != 0),
+        ];
+        for (flag, given) in serial_only {
+            if given {
+                bail!("{flag} applies to the serial models, not {model}");
+            }
+        }
+        if self.mount.sweep.is_some() || self.mount.mount_joint.is_some() {
+            bail!("an emulated CAN device sits on a fixed --mount");
+        }
+        let radar_mount: MountPose = self.mount.mount.parse().context("--mount")?;
+        let rangefinders = self
+            .rangefinders
+            .iter()
+            .map(|text| {
+                let r: RangefinderArg = text.parse()?;
+                Ok(RangefinderSpec {
+                    id: r.id,
+                    extended: model == "tf02-can",
+                    mount: r.mount,
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let options = CanEmulatorOptions {
+            sensor_id: self.sensor_id,
+            radar_mount,
+            rangefinders,
+            drop_frame_every: self.drop_frame_every,
+            seed,
+        };
+        let world = CanWorld {
+            spheres: MovingSpheres::default(),
+            mesh: Some(Arc::new(self.world_bvh()?)),
+        };
+        // Validate once, so that bad options are an error before the pty opens.
+        can_emulator(model, &options, world.clone()).map_err(anyhow::Error::msg)?;
+        let model = model.to_owned();
+        Ok(move || can_emulator(&model, &options, world.clone()).map_err(anyhow::Error::msg))
     }
 
     /// The line's schedule of faults and its link.
@@ -177,5 +283,16 @@ impl EmulatorArgs {
             }
         };
         Ok(Bvh::build(&mesh)?)
+    }
+}
+
+/// The bus bitrate a CAN model runs at out of the box (ARS408: 500 kbit/s;
+/// TF03-CAN and TF02: 1 Mbit/s; TFmini-i-CAN and TF02-i-CAN: 250 kbit/s;
+/// `sensors.md` §2.1, §2.2): the emulated adapter's bus.
+pub fn can_bitrate(model: &str) -> u32 {
+    match model {
+        "ars408" => 500_000,
+        "tfmini-i-can" | "tf02-i-can" => 250_000,
+        _ => 1_000_000,
     }
 }

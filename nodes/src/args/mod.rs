@@ -2,6 +2,7 @@
 //! place so that neither imports the other.
 
 mod blend;
+mod can_device;
 mod device;
 mod emulator;
 mod mount;
@@ -9,6 +10,9 @@ mod smooth;
 mod surrogate;
 
 pub use blend::{points3, BlendShapeArgs};
+pub use can_device::{
+    parse_can_id, read_dbc, CanDeviceArgs, CanDeviceKind, RadarOutputArg, RangefinderArg,
+};
 pub use device::{DeviceArgs, DeviceKind, RplidarScan, ScipScan};
 pub use emulator::EmulatorArgs;
 pub use mount::{CloudArgs, MountArgs, MountAxis};

@@ -9,9 +9,13 @@ use crate::ingest::run_emulator;
 use crate::ingest::sim::{CandumpWriter, ScanSink, SerialSensorWriter, SlcanWriter};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use shroud_core::ingest::can::{CanSensorConfig, MAX_CAN_POINTS, MAX_EXTENDED_ID, MAX_STANDARD_ID};
+use shroud_core::ingest::can::{
+    format_candump_line, CanSensorConfig, CandumpRecord, MAX_CAN_POINTS, MAX_EXTENDED_ID,
+    MAX_STANDARD_ID,
+};
 use shroud_core::ingest::serial::{PointEncoding, SerialEncoder, MAX_FRAME_POINTS};
 use shroud_core::ingest::Scan;
+use shroud_sim::can_device::CAN_MODELS;
 use shroud_sim::Scene;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -42,8 +46,11 @@ pub enum SimEncoding {
 
 #[derive(Debug, Clone, Args)]
 pub struct SensorSimArgs {
-    /// serial or slcan (to a pseudo-terminal, or --port), or candump (to --output).
-    #[arg(long, value_enum, default_value_t = SimFormat::Serial)]
+    /// serial or slcan (to a pseudo-terminal, or --port), or candump (to
+    /// --output). With a CAN --device: slcan (an emulated SLCAN adapter on a
+    /// pseudo-terminal, the default) or candump (--duration seconds of the
+    /// device's traffic into --output).
+    #[arg(long, alias = "transport", value_enum, default_value_t = SimFormat::Serial)]
     pub format: SimFormat,
     /// Write to this serial port instead of creating a pseudo-terminal.
     #[arg(long)]
@@ -89,8 +96,10 @@ pub struct SensorSimArgs {
     pub corrupt_every: u64,
     /// Emulate this real device on a pseudo-terminal instead (urg-04lx,
     /// utm-30lx, rplidar-a1, rplidar-a2, tfmini, tfmini-s, tfmini-plus,
-    /// tf-luna, tf02-pro): it answers the device's command set and measures
-    /// --world from --mount. --format, --scene and --rate do not apply.
+    /// tf-luna, tf02-pro; on CAN: ars408, tf03-can, tfmini-i-can,
+    /// tf02-i-can, tf02-can): it answers the device's command set and
+    /// measures --world (the radar: moving spheres) from --mount (and
+    /// --rangefinder). --scene and --rate do not apply.
     #[arg(long)]
     pub device: Option<String>,
     #[command(flatten)]
@@ -248,10 +257,68 @@ fn run_device_emulator(
     if args.port.is_some() {
         bail!("--device emulates on a pseudo-terminal; --port is for --format serial|slcan");
     }
+    let can = CAN_MODELS.contains(&model);
+    match args.format {
+        SimFormat::Candump if can => return write_can_log(args, model, stop, ready),
+        SimFormat::Candump => bail!(
+            "--format candump applies to the CAN models ({})",
+            CAN_MODELS.join(", ")
+        ),
+        SimFormat::Serial | SimFormat::Slcan => {}
+    }
     let mut make = args.emulator.maker(model, args.corrupt_every, args.seed)?;
     let stats = run_emulator(&mut make, &args.emulator.line(), stop, ready, &mut |_| {})
         .context("emulated device")?;
     tracing::info!("sensor-sim: {model} done: {stats:?}");
+    Ok(())
+}
+
+/// `--duration` seconds of a CAN device's traffic as a candump log, written
+/// as fast as possible with stamps from now on: what `candump -L` would have
+/// logged with the device alone on the bus, configured as it powers up.
+fn write_can_log(
+    args: &SensorSimArgs,
+    model: &str,
+    stop: &AtomicBool,
+    ready: &mut dyn FnMut(&Path),
+) -> Result<()> {
+    let Some(path) = &args.output else {
+        bail!("--format candump needs --output FILE");
+    };
+    let Some(duration) = args.emulator.duration.filter(|d| *d > 0.0) else {
+        bail!("--format candump needs --duration SECONDS (the log is written as fast as possible)");
+    };
+    let mut device = args.emulator.can_maker(model, args.seed)?()?;
+    let file =
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+    let mut log = std::io::BufWriter::new(file);
+    ready(path);
+    let start_ns = crate::transport::unix_ns();
+    let mut frames = Vec::new();
+    let step = 0.01;
+    let mut now = 0.0;
+    let mut written = 0u64;
+    while now < duration && !stop.load(std::sync::atomic::Ordering::Relaxed) {
+        now = (now + step).min(duration);
+        frames.clear();
+        device.poll(now, &mut frames);
+        for (t, frame) in &frames {
+            let record = CandumpRecord {
+                stamp_ns: start_ns + (t * 1e9) as u64,
+                interface: args.interface.clone(),
+                frame: *frame,
+            };
+            writeln!(log, "{}", format_candump_line(&record))
+                .with_context(|| format!("writing {}", path.display()))?;
+            written += 1;
+        }
+    }
+    log.flush()
+        .with_context(|| format!("writing {}", path.display()))?;
+    tracing::info!(
+        "sensor-sim: {model}: {written} frames in {}",
+        path.display()
+    );
     Ok(())
 }
 

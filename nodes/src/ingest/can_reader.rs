@@ -10,6 +10,7 @@ use super::slcan_source::SlcanSource;
 use super::socketcan_source::SocketCanSource;
 use super::{CanSource, ReaderError, ReaderStats, SourceError};
 use shroud_core::ingest::can::{CanScanDecoder, CanSensorConfig};
+use shroud_core::ingest::can_device::FrameClock;
 use shroud_core::ingest::Scan;
 use std::path::PathBuf;
 use std::str::FromStr;
@@ -68,10 +69,10 @@ pub fn run_can_reader(
                 break Ok(());
             }
             match source.recv(poll) {
-                Ok(Some(frame)) => {
+                Ok(Some(timed)) => {
                     stats.frames_received += 1;
                     backoff.reset();
-                    let results = decoder.push(&frame);
+                    let results = decoder.push(&timed.frame);
                     reporter.deliver(results, decoder.stats(), &mut stats, on_scan);
                 }
                 Ok(None) => {}
@@ -129,6 +130,15 @@ pub enum CanSourceSpec {
 }
 
 impl CanSourceSpec {
+    /// Which clock the frames' stamps are on.
+    pub fn clock(&self) -> FrameClock {
+        match self {
+            Self::SocketCan { .. } => FrameClock::Kernel,
+            Self::Slcan { .. } => FrameClock::HostReceipt,
+            Self::Candump { .. } => FrameClock::Log,
+        }
+    }
+
     /// Opens the source this names.
     pub fn open(&self) -> Result<Box<dyn CanSource>, SourceError> {
         Ok(match self {

@@ -1,17 +1,36 @@
-//! The one interface every CAN frame source offers the CAN reader.
+//! The one interface every CAN frame source offers the CAN readers.
 
+use super::device_port::host_now;
 use super::SourceError;
 use shroud_core::ingest::can::CanFrame;
+use shroud_core::ingest::can_device::{FrameClock, TimedFrame};
 use shroud_core::ingest::DecoderStats;
+use std::io;
 use std::time::Duration;
 
 /// A source of classic CAN frames: a SocketCAN interface, an SLCAN adapter, a
 /// candump log replay, or an in-memory bus.
 pub trait CanSource: Send {
-    /// Waits at most about `timeout` for the next frame. `Ok(None)`: nothing
-    /// arrived in time. [`SourceError::Disconnected`]: the device went away (the
-    /// reader reopens it). [`SourceError::Finished`]: there will be no more frames.
-    fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, SourceError>;
+    /// Waits at most about `timeout` for the next frame, and dates it (see
+    /// [`TimedFrame`]: each source says which clock its `stamp_ns` is on).
+    /// `Ok(None)`: nothing arrived in time. [`SourceError::Disconnected`]: the
+    /// device went away (the reader reopens it). [`SourceError::Finished`]:
+    /// there will be no more frames.
+    fn recv(&mut self, timeout: Duration) -> Result<Option<TimedFrame>, SourceError>;
+
+    /// Sends a frame to the bus. A read-only source (a log replay) refuses.
+    fn send(&mut self, frame: &CanFrame) -> Result<(), SourceError> {
+        let _ = frame;
+        Err(SourceError::Disconnected {
+            source_name: self.name(),
+            error: io::Error::new(io::ErrorKind::Unsupported, "read-only CAN source"),
+        })
+    }
+
+    /// Whether [`send`](Self::send) can reach a bus.
+    fn writable(&self) -> bool {
+        false
+    }
 
     /// A short name for logs (`socketcan:can0`, `slcan:/dev/ttyACM0`, ...).
     fn name(&self) -> String;
@@ -23,8 +42,16 @@ pub trait CanSource: Send {
 }
 
 impl CanSource for Box<dyn CanSource> {
-    fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, SourceError> {
+    fn recv(&mut self, timeout: Duration) -> Result<Option<TimedFrame>, SourceError> {
         (**self).recv(timeout)
+    }
+
+    fn send(&mut self, frame: &CanFrame) -> Result<(), SourceError> {
+        (**self).send(frame)
+    }
+
+    fn writable(&self) -> bool {
+        (**self).writable()
     }
 
     fn name(&self) -> String {
@@ -33,5 +60,17 @@ impl CanSource for Box<dyn CanSource> {
 
     fn transport_stats(&self) -> DecoderStats {
         (**self).transport_stats()
+    }
+}
+
+/// `frame` dated by this host's clocks as it is handed over now (sources
+/// with no better clock: SLCAN adapters, the in-memory bus).
+pub fn received_now(frame: CanFrame) -> TimedFrame {
+    let received = host_now();
+    TimedFrame {
+        frame,
+        stamp_ns: received.unix_ns,
+        clock: FrameClock::HostReceipt,
+        received,
     }
 }

@@ -1,9 +1,12 @@
 //! candump log replay: frames from a `candump -L` log file, paced by their
 //! stamps (real time, optionally sped up) or as fast as the reader takes them.
+//! Each frame carries the log's stamp; it is read-only (nothing sent arrives).
 
 use super::backoff::sleep_unless_stopped;
+use super::device_port::host_now;
 use super::{CanSource, SourceError};
-use shroud_core::ingest::can::{CanFrame, CandumpParser, CandumpRecord};
+use shroud_core::ingest::can::{CandumpParser, CandumpRecord};
+use shroud_core::ingest::can_device::{FrameClock, TimedFrame};
 use shroud_core::ingest::DecoderStats;
 use std::fs::File;
 use std::io::{BufRead, BufReader};
@@ -94,7 +97,7 @@ impl CandumpReplay {
 }
 
 impl CanSource for CandumpReplay {
-    fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, SourceError> {
+    fn recv(&mut self, timeout: Duration) -> Result<Option<TimedFrame>, SourceError> {
         let record = match self.next.take() {
             Some(r) => r,
             None => match self.read_record()? {
@@ -103,7 +106,7 @@ impl CanSource for CandumpReplay {
             },
         };
         let ReplayPace::RealTime { speed } = self.pace else {
-            return Ok(Some(record.frame));
+            return Ok(Some(logged(&record)));
         };
         let (start, first) = *self.origin.get_or_insert((Instant::now(), record.stamp_ns));
         let offset = record.stamp_ns.saturating_sub(first) as f64 / speed;
@@ -116,7 +119,7 @@ impl CanSource for CandumpReplay {
             return Ok(None);
         }
         sleep_unless_stopped(wait, &never);
-        Ok(Some(record.frame))
+        Ok(Some(logged(&record)))
     }
 
     fn name(&self) -> String {
@@ -125,5 +128,15 @@ impl CanSource for CandumpReplay {
 
     fn transport_stats(&self) -> DecoderStats {
         *self.parser.stats()
+    }
+}
+
+/// A logged frame with the log's stamp, read now.
+fn logged(record: &CandumpRecord) -> TimedFrame {
+    TimedFrame {
+        frame: record.frame,
+        stamp_ns: record.stamp_ns,
+        clock: FrameClock::Log,
+        received: host_now(),
     }
 }

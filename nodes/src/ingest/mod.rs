@@ -22,12 +22,15 @@
 //!   ([`CandumpReplay`]) or an in-memory bus ([`memory_bus`]); [`CanSourceSpec`]
 //!   names one in text (`socketcan:can0`, `slcan:/dev/ttyACM0@115200:500000`,
 //!   `candump:run.log@max`);
+//! - [`run_can_device`]: a real CAN sensor's driver
+//!   (`shroud_core::ingest::{ars408, benewake_can}`) on any [`CanSource`];
 //! - [`run_device`]: a real sensor's driver (`shroud_core::ingest::{scip,
 //!   rplidar, benewake}`) on a serial port ([`DevicePortConfig`]);
 //! - [`sim`]: the simulated sensors' writers behind `shroud sensor-sim`, and
 //!   [`run_emulator`]: an emulated real device on a pseudo-terminal.
 
 mod backoff;
+mod can_device_bus;
 mod can_reader;
 mod can_source;
 mod candump_source;
@@ -44,13 +47,14 @@ mod socketcan_source;
 mod stats;
 
 pub use backoff::{sleep_unless_stopped, BackoffConfig};
+pub use can_device_bus::{run_can_device, BusStats};
 pub use can_reader::{run_can_reader, CanReaderConfig, CanSourceSpec};
-pub use can_source::CanSource;
+pub use can_source::{received_now, CanSource};
 pub use candump_source::{CandumpReplay, ReplayPace};
 pub use device_port::{host_now, run_device, DevicePortConfig, PortStats};
 pub use emulated_device::{run_emulator, EmulatorLine, LineStats};
 pub use error::{ReaderError, SourceError};
-pub use memory_bus::{memory_bus, MemoryBus, MemoryBusSender};
+pub use memory_bus::{memory_bus, memory_bus_duplex, MemoryBus, MemoryBusSender};
 pub use serial::{run_serial_reader, SerialReaderConfig};
 pub use shroud_core::ingest::Scan;
 pub use slcan_source::SlcanSource;

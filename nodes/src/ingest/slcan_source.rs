@@ -1,9 +1,12 @@
 //! SLCAN source: a Lawicel ASCII CAN adapter on a serial port. On open it sends
-//! `C`, `Sn`, `O` (close, bitrate, open); on drop it sends `C`.
+//! `C`, `Sn`, `O` (close, bitrate, open); on drop it sends `C`. Frames are
+//! dated by the host's clock when the read that returned them completed.
 
+use super::can_source::received_now;
 use super::{CanSource, SourceError};
-use shroud_core::ingest::can::slcan::{open_commands, SlcanDecoder, SlcanMessage};
+use shroud_core::ingest::can::slcan::{encode_frame, open_commands, SlcanDecoder, SlcanMessage};
 use shroud_core::ingest::can::CanFrame;
+use shroud_core::ingest::can_device::TimedFrame;
 use shroud_core::ingest::DecoderStats;
 use std::collections::VecDeque;
 use std::io::{self, Read, Write};
@@ -14,7 +17,7 @@ pub struct SlcanSource {
     path: String,
     port: Box<dyn serialport::SerialPort>,
     decoder: SlcanDecoder,
-    pending: VecDeque<CanFrame>,
+    pending: VecDeque<TimedFrame>,
 }
 
 impl std::fmt::Debug for SlcanSource {
@@ -61,7 +64,7 @@ impl SlcanSource {
 }
 
 impl CanSource for SlcanSource {
-    fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, SourceError> {
+    fn recv(&mut self, timeout: Duration) -> Result<Option<TimedFrame>, SourceError> {
         let deadline = Instant::now() + timeout;
         let mut buf = [0u8; 1024];
         loop {
@@ -92,12 +95,23 @@ impl CanSource for SlcanSource {
             };
             for message in self.decoder.push(&buf[..n]) {
                 match message {
-                    Ok(SlcanMessage::Frame { frame, .. }) => self.pending.push_back(frame),
+                    Ok(SlcanMessage::Frame { frame, .. }) => {
+                        self.pending.push_back(received_now(frame))
+                    }
                     Ok(other) => tracing::trace!(path = %self.path, "slcan: {other:?}"),
                     Err(error) => tracing::debug!(path = %self.path, "slcan: {error}"),
                 }
             }
         }
+    }
+
+    fn send(&mut self, frame: &CanFrame) -> Result<(), SourceError> {
+        let line = encode_frame(frame);
+        self.port.write_all(&line).map_err(|e| self.disconnected(e))
+    }
+
+    fn writable(&self) -> bool {
+        true
     }
 
     fn name(&self) -> String {

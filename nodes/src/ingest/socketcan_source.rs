@@ -1,11 +1,15 @@
 //! SocketCAN source: a Linux CAN interface (`can0`, `vcan0`) through the
-//! `socketcan` crate. Error frames are counted and skipped.
+//! `socketcan` crate. Error frames are counted and skipped. Frames carry the
+//! kernel's receive timestamp (`SO_TIMESTAMPNS`), taken when the frame
+//! reached the socket layer, not when this node got round to reading it.
 
+use super::device_port::host_now;
 use super::{CanSource, SourceError};
 use shroud_core::ingest::can::CanFrame;
-use socketcan::{CanSocket, EmbeddedFrame, Frame, Socket};
+use shroud_core::ingest::can_device::{FrameClock, TimedFrame};
+use socketcan::{CanSocket, EmbeddedFrame, Frame, Socket, SocketOptions};
 use std::io;
-use std::time::Duration;
+use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
 /// A bound raw CAN socket.
 #[derive(Debug)]
@@ -19,10 +23,12 @@ pub struct SocketCanSource {
 impl SocketCanSource {
     /// Opens `interface` (fails with [`SourceError::Open`] if it does not exist).
     pub fn open(interface: &str) -> Result<Self, SourceError> {
-        let socket = CanSocket::open(interface).map_err(|error| SourceError::Open {
+        let open_error = |error| SourceError::Open {
             source_name: format!("socketcan:{interface}"),
             error,
-        })?;
+        };
+        let socket = CanSocket::open(interface).map_err(open_error)?;
+        socket.set_recv_timestamp(true).map_err(open_error)?;
         Ok(Self {
             interface: interface.to_owned(),
             socket,
@@ -37,13 +43,27 @@ impl SocketCanSource {
 }
 
 impl CanSource for SocketCanSource {
-    fn recv(&mut self, timeout: Duration) -> Result<Option<CanFrame>, SourceError> {
-        match self.socket.read_frame_timeout(timeout) {
-            Ok(frame) => Ok(from_socketcan(&frame).or_else(|| {
-                self.error_frames += 1;
-                tracing::debug!(interface = %self.interface, "CAN error frame: {frame:?}");
-                None
-            })),
+    fn recv(&mut self, timeout: Duration) -> Result<Option<TimedFrame>, SourceError> {
+        let read = self
+            .socket
+            .set_read_timeout(timeout.max(Duration::from_millis(1)))
+            .and_then(|()| self.socket.read_frame_with_timestamp());
+        match read {
+            Ok((frame, stamp)) => {
+                let received = host_now();
+                let Some(ours) = from_socketcan(&frame) else {
+                    self.error_frames += 1;
+                    tracing::debug!(interface = %self.interface, "CAN error frame: {frame:?}");
+                    return Ok(None);
+                };
+                let stamp_ns = epoch_ns(stamp).unwrap_or(received.unix_ns);
+                Ok(Some(TimedFrame {
+                    frame: ours,
+                    stamp_ns,
+                    clock: FrameClock::Kernel,
+                    received,
+                }))
+            }
             Err(e)
                 if matches!(
                     e.kind(),
@@ -61,9 +81,27 @@ impl CanSource for SocketCanSource {
         }
     }
 
+    fn send(&mut self, frame: &CanFrame) -> Result<(), SourceError> {
+        SocketCanSource::send(self, frame).map_err(|error| SourceError::Disconnected {
+            source_name: self.name(),
+            error,
+        })
+    }
+
+    fn writable(&self) -> bool {
+        true
+    }
+
     fn name(&self) -> String {
         format!("socketcan:{}", self.interface)
     }
+}
+
+/// A kernel stamp as ns since the epoch (`SystemTime` is what the crate gives).
+fn epoch_ns(t: SystemTime) -> Option<u64> {
+    t.duration_since(UNIX_EPOCH)
+        .ok()
+        .map(|d| d.as_nanos() as u64)
 }
 
 /// Our frame from a socketcan one; `None` for an error frame.

@@ -1,12 +1,22 @@
-//! The `can` node: a real range sensor on a CAN bus (SocketCAN, an SLCAN
-//! adapter or a candump log). A blocking reader (from `crate::ingest`) decodes
-//! scans; each is published as a cloud.
+//! The `can` node: a range sensor on a CAN bus (SocketCAN, an SLCAN adapter or
+//! a candump log). With `--device shroud` a blocking reader decodes shroud's
+//! own scan protocol; with a real device (ARS408 radar, Benewake
+//! rangefinders) its driver assembles each measurement cycle into a cloud in
+//! the robot's frame. Either way each cloud is published on `cloud/<stream>`.
 
-use super::runtime::{run_node, NodeCommon};
-use super::scan_publisher::{cloud_publisher, max_skew_ns};
-use crate::ingest::{run_can_reader, CanReaderConfig, CanSourceSpec};
-use anyhow::Result;
+use super::device_status::{mirror_driver_counters, report_health, report_identity, report_state};
+use super::runtime::{run_node, NodeCommon, NodeContext};
+use super::scan_publisher::{cloud_publisher, max_skew_ns, CloudOut};
+use crate::args::CanDeviceArgs;
+use crate::ingest::{
+    host_now, run_can_device, run_can_reader, BackoffConfig, BusStats, CanReaderConfig,
+    CanSourceSpec,
+};
+use anyhow::{bail, Result};
 use clap::Args;
+use shroud_core::ingest::can_device::{CanDeviceDriver, CanDriverOutput, SensorCloud};
+use shroud_core::ingest::device::DeviceStats;
+use std::sync::Arc;
 
 #[derive(Debug, Clone, Args)]
 pub struct CanNodeArgs {
@@ -22,6 +32,8 @@ pub struct CanNodeArgs {
     /// clock is counted as `clock_skew` (`inf`: no check, for old logs).
     #[arg(long, default_value_t = 5.0)]
     pub max_skew: f64,
+    #[command(flatten)]
+    pub device: CanDeviceArgs,
 }
 
 pub fn run_can(args: CanNodeArgs) -> Result<()> {
@@ -31,6 +43,16 @@ pub fn run_can(args: CanNodeArgs) -> Result<()> {
         .parse()
         .map_err(|e| anyhow::anyhow!("--source {:?}: {e}", args.source))?;
     let common = args.common.clone();
+    if args.device.is_real_device() {
+        // Settings are checked before the node joins the graph.
+        let driver = args.device.driver()?;
+        return run_node(&common, "can", move |ctx| {
+            run_device_clouds(&ctx, driver, &spec, &args.stream, max_skew_ns)
+        });
+    }
+    if args.device.dbc.is_some() || !args.device.rangefinders.is_empty() {
+        bail!("--dbc and --rangefinder apply to real devices (--device ars408, tf03, ...)");
+    }
     run_node(&common, "can", move |ctx| {
         let mut publish = cloud_publisher(&ctx, &args.stream, &args.source, max_skew_ns)?;
         let stats = run_can_reader(
@@ -42,4 +64,65 @@ pub fn run_can(args: CanNodeArgs) -> Result<()> {
         tracing::info!("CAN reader stopped: {stats}");
         Ok(())
     })
+}
+
+/// Runs `driver` on the bus `spec` names and publishes its clouds until the
+/// node stops or the log ends.
+fn run_device_clouds(
+    ctx: &Arc<NodeContext>,
+    mut driver: Box<dyn CanDeviceDriver>,
+    spec: &CanSourceSpec,
+    stream: &str,
+    max_skew_ns: u64,
+) -> Result<()> {
+    let mut out = CloudOut::new(ctx, stream, driver.kind(), max_skew_ns)?;
+    ctx.metrics
+        .set_label("device.kind".into(), driver.kind().into());
+    ctx.metrics
+        .set_label("device.clock".into(), spec.clock().name().into());
+    let mut on_output = |output, device: &DeviceStats, bus: &BusStats| {
+        match output {
+            CanDriverOutput::Cloud(cloud) => publish(ctx, &mut out, &cloud),
+            CanDriverOutput::State(state) => report_state(ctx, &state),
+            CanDriverOutput::Identity(pairs) => report_identity(ctx, pairs),
+            CanDriverOutput::Health { ok, detail } => report_health(ctx, ok, &detail),
+            CanDriverOutput::Send(_) => {}
+        }
+        mirror_counters(ctx, device, bus);
+    };
+    let stats = run_can_device(
+        &mut || spec.open(),
+        driver.as_mut(),
+        BackoffConfig::default(),
+        &mut on_output,
+        ctx.stop_flag(),
+    )?;
+    mirror_counters(ctx, driver.stats(), &stats);
+    tracing::info!(
+        "{} device stopped: {}; bus: {stats:?}",
+        driver.kind(),
+        driver.stats()
+    );
+    Ok(())
+}
+
+/// Publishes a cycle's cloud, aged from the arrival of its first frame.
+fn publish(ctx: &NodeContext, out: &mut CloudOut<'_>, cloud: &SensorCloud) {
+    let first = cloud.received.monotonic_ns;
+    out.publish(&cloud.scan, || {
+        host_now().monotonic_ns.saturating_sub(first)
+    });
+    ctx.metrics
+        .set("cloud_points", cloud.scan.points.len() as f64);
+}
+
+fn mirror_counters(ctx: &NodeContext, device: &DeviceStats, bus: &BusStats) {
+    mirror_driver_counters(ctx, device, bus.transport.total_errors());
+    let m = &ctx.metrics;
+    m.set_counter("opens", bus.opens);
+    m.set_counter("open_failures", bus.open_failures);
+    m.set_counter("disconnects", bus.disconnects);
+    m.set_counter("frames_received", bus.frames_received);
+    m.set_counter("frames_sent", bus.frames_sent);
+    m.set_counter("frames_unsent", bus.frames_unsent);
 }

@@ -3,6 +3,7 @@
 //! clouds in the robot's frame, published on `cloud/<stream>` (another). The
 //! mount's angle, when it comes from a joint, arrives on `joints/<name>`.
 
+use super::device_status::{mirror_driver_counters, report_health, report_identity, report_state};
 use super::runtime::NodeContext;
 use super::scan_publisher::CloudOut;
 use crate::args::CloudArgs;
@@ -31,9 +32,6 @@ enum Input {
     /// Publish the cloud being filled (the device went away).
     Flush,
 }
-
-/// Labels that describe the node, not the device on its port.
-const KEPT_LABELS: [&str; 2] = ["device.kind", "device.state"];
 
 /// Runs `driver` on `port` and publishes its clouds until the node stops.
 pub(super) fn run_device_clouds(
@@ -90,43 +88,16 @@ fn report(ctx: &NodeContext, output: DriverOutput, tx: &SyncSender<Input>) {
     match output {
         DriverOutput::Scan(scan) => offer(ctx, tx, Input::Scan(scan)),
         DriverOutput::State(state) => {
-            tracing::info!("device state: {state:?}");
-            match state {
-                // What the last device said no longer holds.
-                DeviceState::Connecting => ctx.metrics.remove_labels("device.", &KEPT_LABELS),
-                DeviceState::Disconnected => {
-                    ctx.metrics.remove_labels("device.", &KEPT_LABELS);
-                    // Its scans are not merged with the next connection's
-                    // (rare, so waiting for room is fine). At a stop the
-                    // unfinished cloud is not published.
-                    if !ctx.stopping() {
-                        let _ = tx.send(Input::Flush);
-                    }
-                }
-                _ => {}
+            // Its scans are not merged with the next connection's (rare, so
+            // waiting for room is fine). At a stop the unfinished cloud is
+            // not published.
+            if state == DeviceState::Disconnected && !ctx.stopping() {
+                let _ = tx.send(Input::Flush);
             }
-            ctx.metrics
-                .set_label("device.state".into(), state.name().into());
+            report_state(ctx, &state);
         }
-        DriverOutput::Identity(pairs) => {
-            let text: Vec<String> = pairs.iter().map(|(k, v)| format!("{k}={v}")).collect();
-            tracing::info!("device identity: {}", text.join(", "));
-            for (key, value) in pairs {
-                ctx.metrics.set_label(format!("device.{key}"), value);
-            }
-        }
-        DriverOutput::Health { ok, detail } => {
-            if !ok {
-                ctx.metrics.add("device_unhealthy", 1);
-                tracing::warn!("device health: {detail}");
-            }
-            let text = if ok {
-                format!("ok: {detail}")
-            } else {
-                format!("fault: {detail}")
-            };
-            ctx.metrics.set_label("device.health".into(), text);
-        }
+        DriverOutput::Identity(pairs) => report_identity(ctx, pairs),
+        DriverOutput::Health { ok, detail } => report_health(ctx, ok, &detail),
         // The port carries these out itself.
         DriverOutput::Write(_)
         | DriverOutput::SetBaud(_)
@@ -149,18 +120,11 @@ fn offer(ctx: &NodeContext, tx: &SyncSender<Input>, input: Input) {
 }
 
 fn mirror_counters(ctx: &NodeContext, device: &DeviceStats, port: &PortStats) {
-    let m = &ctx.metrics;
-    m.set_counter("scans", device.scans);
-    m.set_counter("bytes_read", device.bytes);
-    m.set_counter("commands", device.commands);
-    m.set_counter("handshakes", device.handshakes);
     // The device's errors plus the joint states refused (counted apart).
-    let joints = m.counter("joint_samples_malformed");
-    m.set_counter("dropped_malformed", device.total_errors() + joints);
-    let all = device.error_counts().chain(device.invalid_reading_counts());
-    for (kind, n) in all.chain(device.note_counts()) {
-        m.set_counter(kind, n);
-    }
+    let joints = ctx.metrics.counter("joint_samples_malformed");
+    mirror_driver_counters(ctx, device, joints);
+    let m = &ctx.metrics;
+    m.set_counter("bytes_read", device.bytes);
     m.set_counter("opens", port.opens);
     m.set_counter("open_failures", port.open_failures);
     m.set_counter("disconnects", port.disconnects);

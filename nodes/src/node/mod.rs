@@ -7,6 +7,7 @@ mod blend;
 mod can;
 mod device;
 mod device_sim;
+mod device_status;
 mod fit;
 mod guard;
 mod list;

@@ -1,5 +1,6 @@
 //! Byte-exact emulators of real serial range sensors (Hokuyo SCIP 2.0 lidars,
-//! Slamtec RPLIDARs, Benewake TFmini rangefinders). An emulator answers the
+//! Slamtec RPLIDARs, Benewake TFmini rangefinders, and an SLCAN adapter
+//! with a CAN device on its bus). An emulator answers the
 //! device's real command set with its real replies and streams scans it
 //! measures by casting rays into a [`RaySource`]. Pure: the caller carries the
 //! bytes (a pseudo-terminal in `shroud sensor-sim`) and passes the time.
@@ -13,8 +14,10 @@ mod catalog;
 mod emulator;
 pub mod hokuyo;
 pub mod rplidar;
+mod slcan_adapter;
 mod world;
 
 pub use catalog::{emulator, EmulatorOptions, MODELS};
 pub use emulator::{Faults, RayReturn, RaySource, SerialDeviceEmulator};
+pub use slcan_adapter::SlcanAdapter;
 pub use world::MeshRays;

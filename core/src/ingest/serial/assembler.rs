@@ -79,6 +79,7 @@ impl ScanAssembler {
                 stamp_ns: header.stamp_ns,
                 points: Vec::new(),
                 intensity: None,
+                channels: Vec::new(),
             },
             frame_count: header.frame_count,
             next_index: 0,

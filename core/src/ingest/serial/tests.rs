@@ -350,6 +350,7 @@ fn arb_scan() -> impl Strategy<Value = Scan> {
                 stamp_ns,
                 points,
                 intensity,
+                channels: Vec::new(),
             }
         })
 }

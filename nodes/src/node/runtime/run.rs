@@ -3,7 +3,7 @@
 //! within a hard deadline.
 
 use super::context::{NodeCommon, NodeContext};
-use super::status::publish_status;
+use super::status::{publish_final_status, publish_status};
 use super::watchdog::Watchdog;
 use crate::node::metrics::NodeMetrics;
 use crate::transport::{
@@ -119,7 +119,13 @@ where
         shm: common.zenoh.shm.is_on(),
     });
     tracing::info!(node = %name, kind, "started");
-    let status = tokio::spawn(publish_status(ctx.clone(), kind, common.status_period));
+    let started = std::time::Instant::now();
+    let status = tokio::spawn(publish_status(
+        ctx.clone(),
+        kind,
+        common.status_period,
+        started,
+    ));
     let worker = {
         let ctx = ctx.clone();
         tokio::task::spawn_blocking(move || body(ctx))
@@ -128,6 +134,7 @@ where
     ctx.stop.store(true, Ordering::Relaxed);
     watchdog.arm();
     status.abort();
+    publish_final_status(&ctx, kind, started);
     drop(token);
     watchdog.stage("closing the zenoh session");
     match tokio::time::timeout(CLOSE_GRACE, ctx.session.close()).await {

@@ -1,0 +1,147 @@
+//! The bus under a CAN device driver: opens a [`CanSource`], hands the driver
+//! every frame with its times, sends what the driver asks, polls it when the
+//! bus is quiet, and reopens the source with backoff when it goes away. Every
+//! decision about the device is the driver's
+//! (`shroud_core::ingest::can_device`); this file only moves frames.
+
+use super::backoff::{Backoff, BackoffConfig};
+use super::device_port::host_now;
+use super::{CanSource, ReaderError, SourceError};
+use shroud_core::ingest::can_device::{CanDeviceDriver, CanDriverOutput};
+use shroud_core::ingest::device::{DeviceState, DeviceStats};
+use shroud_core::ingest::DecoderStats;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+/// What the bus itself counted (the driver counts the rest).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct BusStats {
+    pub opens: u64,
+    pub open_failures: u64,
+    /// The source went away (adapter unplugged, interface down).
+    pub disconnects: u64,
+    pub frames_received: u64,
+    pub frames_sent: u64,
+    /// Frames the driver asked to send that the source could not carry (a
+    /// log replay is read-only; a write failed).
+    pub frames_unsent: u64,
+    /// The transport's own decoding (SLCAN or candump lines), summed over
+    /// every opening.
+    pub transport: DecoderStats,
+}
+
+/// Runs `driver` on the sources `open` makes until `stop` is set or a source
+/// finishes (the end of a log). Every output other than a send goes to
+/// `on_output` with the driver's and the bus's counters. Failed opens and
+/// disconnects are logged, counted and retried with backoff;
+/// [`SourceError::Fatal`] returns an error.
+pub fn run_can_device(
+    open: &mut dyn FnMut() -> Result<Box<dyn CanSource>, SourceError>,
+    driver: &mut dyn CanDeviceDriver,
+    backoff: BackoffConfig,
+    on_output: &mut dyn FnMut(CanDriverOutput, &DeviceStats, &BusStats),
+    stop: &AtomicBool,
+) -> Result<BusStats, ReaderError> {
+    let mut stats = BusStats::default();
+    let mut backoff = Backoff::new(backoff);
+    let mut outputs = Vec::new();
+    while !stop.load(Ordering::Relaxed) {
+        let mut source = match open() {
+            Ok(source) => source,
+            Err(SourceError::Fatal(message)) => return Err(SourceError::Fatal(message).into()),
+            Err(SourceError::Finished(_)) => break,
+            Err(error) => {
+                stats.open_failures += 1;
+                if stats.open_failures == 1 || stats.open_failures.is_power_of_two() {
+                    tracing::warn!(attempts = stats.open_failures, "{error}; retrying");
+                }
+                backoff.wait(stop);
+                continue;
+            }
+        };
+        stats.opens += 1;
+        let name = source.name();
+        tracing::info!(source = %name, writable = source.writable(), "CAN bus opened");
+        driver.connect(host_now(), source.writable(), &mut outputs);
+        let transport_before = stats.transport;
+        let outcome = serve(
+            &mut *source,
+            driver,
+            &mut stats,
+            &mut outputs,
+            on_output,
+            stop,
+        );
+        stats.transport = transport_before;
+        stats.transport.merge(&source.transport_stats());
+        drop(source);
+        driver.disconnect(&mut outputs);
+        outputs.push(CanDriverOutput::State(DeviceState::Disconnected));
+        deliver(&mut outputs, None, driver, &mut stats, on_output);
+        match outcome {
+            Ok(()) => break,
+            Err(SourceError::Finished(_)) => {
+                tracing::info!(source = %name, "CAN source finished");
+                break;
+            }
+            Err(SourceError::Fatal(message)) => return Err(SourceError::Fatal(message).into()),
+            Err(error) => {
+                stats.disconnects += 1;
+                tracing::warn!(source = %name, disconnects = stats.disconnects, "{error}; reopening");
+                backoff.wait(stop);
+            }
+        }
+    }
+    Ok(stats)
+}
+
+/// Frames in, outputs out, until the stop or a source error.
+fn serve(
+    source: &mut dyn CanSource,
+    driver: &mut dyn CanDeviceDriver,
+    stats: &mut BusStats,
+    outputs: &mut Vec<CanDriverOutput>,
+    on_output: &mut dyn FnMut(CanDriverOutput, &DeviceStats, &BusStats),
+    stop: &AtomicBool,
+) -> Result<(), SourceError> {
+    let poll = Duration::from_millis(50);
+    deliver(outputs, Some(source), driver, stats, on_output);
+    while !stop.load(Ordering::Relaxed) {
+        if let Some(frame) = source.recv(poll)? {
+            stats.frames_received += 1;
+            driver.receive(&frame, outputs);
+        }
+        driver.poll(host_now(), outputs);
+        deliver(outputs, Some(source), driver, stats, on_output);
+    }
+    Ok(())
+}
+
+/// Sends the driver's frames (when there is a bus to send them on) and hands
+/// the rest to `on_output`, in order.
+fn deliver(
+    outputs: &mut Vec<CanDriverOutput>,
+    mut source: Option<&mut dyn CanSource>,
+    driver: &dyn CanDeviceDriver,
+    stats: &mut BusStats,
+    on_output: &mut dyn FnMut(CanDriverOutput, &DeviceStats, &BusStats),
+) {
+    for output in outputs.drain(..) {
+        match output {
+            CanDriverOutput::Send(frame) => {
+                let sent = match source.as_deref_mut() {
+                    Some(bus) if bus.writable() => bus.send(&frame),
+                    _ => Err(SourceError::Fatal("no writable bus".into())),
+                };
+                match sent {
+                    Ok(()) => stats.frames_sent += 1,
+                    Err(error) => {
+                        stats.frames_unsent += 1;
+                        tracing::warn!("CAN frame {:#x} not sent: {error}", frame.id);
+                    }
+                }
+            }
+            other => on_output(other, driver.stats(), stats),
+        }
+    }
+}
