@@ -15,8 +15,11 @@ use zenoh::Wait;
 
 const PACKAGES: [&str; 3] = ["eclipse-zenoh==1.10.2", "msgpack==1.1.2", "numpy==2.2.6"];
 
-/// A virtual environment with the example's packages, created once.
+/// A virtual environment with the example's packages, created once (tests
+/// run in parallel: one creates it while the others wait).
 fn python() -> PathBuf {
+    static CREATING: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _one_at_a_time = CREATING.lock().unwrap_or_else(|e| e.into_inner());
     let venv = Path::new(env!("CARGO_TARGET_TMPDIR")).join("pyenv");
     let py = venv.join("bin/python3");
     let ready = venv.join(".ready");
@@ -48,14 +51,16 @@ fn python() -> PathBuf {
     py
 }
 
-/// The code block between the python-example markers of FORMATS.md.
-fn documented_example() -> String {
+/// The code block between the `marker` markers of FORMATS.md.
+fn documented_example(marker: &str) -> String {
     let doc =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/core/FORMATS.md")).unwrap();
     let start = doc
-        .find("<!-- python-example:start -->")
+        .find(&format!("<!-- {marker}:start -->"))
         .expect("start marker");
-    let end = doc.find("<!-- python-example:end -->").expect("end marker");
+    let end = doc
+        .find(&format!("<!-- {marker}:end -->"))
+        .expect("end marker");
     let block = &doc[start..end];
     let code_start = block.find("```python\n").expect("python fence") + "```python\n".len();
     let code_end = block[code_start..].find("```").expect("closing fence") + code_start;
@@ -67,7 +72,7 @@ fn python_decodes_what_the_nodes_send() {
     let py = python();
     let dir = tempfile::tempdir().unwrap();
     let script = dir.path().join("listen.py");
-    std::fs::write(&script, documented_example()).unwrap();
+    std::fs::write(&script, documented_example("python-example")).unwrap();
 
     let endpoint = format!("tcp/127.0.0.1:{}", free_port());
     let session = hub(&endpoint);
@@ -143,5 +148,77 @@ fn python_decodes_what_the_nodes_send() {
         // The fit node's own clock measured the cloud's time in the pipeline.
         let pipeline_ms = l["pipeline_ms"].as_f64().unwrap();
         assert!(pipeline_ms > 0.0 && pipeline_ms < 10_000.0, "{pipeline_ms}");
+    }
+}
+
+#[test]
+fn python_reads_radar_channels() {
+    let py = python();
+    let dir = tempfile::tempdir().unwrap();
+    let script = dir.path().join("channels.py");
+    std::fs::write(&script, documented_example("python-channels-example")).unwrap();
+    let link = dir.path().join("slcan");
+    let link = link.to_str().unwrap();
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+    let _session = hub(&endpoint);
+    let ns = "e2e-python-radar";
+    let w = wiring(&endpoint, ns);
+    let emulator = Proc::start(&[
+        "sensor-sim",
+        "--device",
+        "ars408",
+        "--link",
+        link,
+        "--mount",
+        "-4,0,0.5,0,0,0",
+    ]);
+    emulator.expect_line("sensor-sim: ars408 on", Duration::from_secs(60));
+    let source = format!("slcan:{link}:500000");
+    let _radar = Proc::start(
+        &[
+            &[
+                "node", "can", "--device", "ars408", "--source", &source, "--stream", "radar",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let mut child = Command::new(&py)
+        .arg(&script)
+        .args([endpoint.as_str(), ns])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while child.try_wait().unwrap().is_none() && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    let _ = child.kill();
+    let out = child.wait_with_output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "python failed (or gave no cloud in 60 s): {stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines: Vec<serde_json::Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let names: Vec<&str> = lines
+        .iter()
+        .map(|l| l["channel"].as_str().unwrap())
+        .collect();
+    for name in ["dyn_prop", "rcs", "velocity_lat", "velocity_long"] {
+        assert!(names.contains(&name), "{name} in {names:?}");
+    }
+    for l in &lines {
+        assert!(l["points"].as_u64().unwrap() > 0, "{l}");
+        if l["channel"] == "rcs" {
+            // The DBC's range: -64 to 63.5 dBm².
+            assert!(l["min"].as_f64().unwrap() >= -64.0, "{l}");
+            assert!(l["max"].as_f64().unwrap() <= 63.5, "{l}");
+        }
     }
 }

@@ -1,6 +1,8 @@
 //! A decoded scan: the sensor's sequence number and stamp, and its points in metres.
 
-use crate::message::{CloudMessage, CloudView, MessageError, PointChannel, SensorPose};
+use crate::message::{
+    check_point_channels, CloudMessage, CloudView, MessageError, PointChannel, SensorPose,
+};
 
 /// One complete sensor scan, as every ingest decoder returns it and every encoder
 /// takes it.
@@ -46,12 +48,14 @@ impl Scan {
 impl Scan {
     /// [`Scan::to_message`] without copies, padded so that a subscriber on the
     /// same machine can read the points in place ([`CloudView::aligned`]).
+    /// Fails on channels that are not one value per point or share a name.
     pub fn to_view<'a>(
         &'a self,
         sequence: u64,
         source: &'a str,
         pose: SensorPose,
     ) -> Result<CloudView<'a>, MessageError> {
+        check_point_channels(&self.channels, self.points.len())?;
         let view = CloudView::new(self.stamp_ns, sequence, source, pose, &self.points)
             .with_channels(&self.channels);
         match &self.intensity {

@@ -79,6 +79,24 @@ pub fn check_channels(blobs: &ChannelBlobs, points: usize) -> Result<(), Message
     Ok(())
 }
 
+/// Checks channels before they are sent: distinct names, and what
+/// [`check_channels`] checks of the wire form (a producer's mistake is its
+/// own error, not a cloud every consumer refuses).
+pub fn check_point_channels(channels: &[PointChannel], points: usize) -> Result<(), MessageError> {
+    let mut names: Vec<&str> = channels.iter().map(|c| c.name.as_str()).collect();
+    names.sort_unstable();
+    if let Some(twice) = names.windows(2).find(|w| w[0] == w[1]) {
+        return Err(MessageError::Invalid {
+            field: "channels",
+            reason: format!("channel {:?} given twice", twice[0]),
+        });
+    }
+    match channels_to_blobs(channels) {
+        Some(blobs) => check_channels(&blobs, points),
+        None => Ok(()),
+    }
+}
+
 /// The channels as values (after [`check_channels`]).
 pub fn blobs_to_channels(blobs: &ChannelBlobs) -> Vec<PointChannel> {
     blobs
@@ -123,5 +141,9 @@ mod tests {
             .collect();
         assert!(check_channels(&many, 0).is_err());
         assert_eq!(channels_to_blobs(&[]), None);
+        check_point_channels(&channels, 2).unwrap();
+        let twice = [channels[0].clone(), channels[0].clone()];
+        assert!(check_point_channels(&twice, 2).is_err());
+        assert!(check_point_channels(&channels, 3).is_err());
     }
 }

@@ -21,8 +21,8 @@ mod topic;
 pub use blend_command::BlendCommandMessage;
 pub use blob::{encode_into, encoded_len};
 pub use channels::{
-    blobs_to_channels, channels_to_blobs, check_channels, ChannelBlobs, PointChannel, MAX_CHANNELS,
-    MAX_CHANNEL_NAME,
+    blobs_to_channels, channels_to_blobs, check_channels, check_point_channels, ChannelBlobs,
+    PointChannel, MAX_CHANNELS, MAX_CHANNEL_NAME,
 };
 pub use cloud::{CloudMessage, SensorPose};
 pub use cloud_view::CloudView;

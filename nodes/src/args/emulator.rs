@@ -107,12 +107,7 @@ impl Default for EmulatorArgs {
 impl EmulatorArgs {
     /// Checks the options and loads the world, then returns a maker of fresh
     /// emulators of `model` (one per power-up).
-    pub fn maker(
-        &self,
-        model: &str,
-        corrupt_every: u64,
-        seed: u64,
-    ) -> Result<EmulatorMaker> {
+    pub fn maker(&self, model: &str, corrupt_every: u64, seed: u64) -> Result<EmulatorMaker> {
         if CAN_MODELS.contains(&model) {
             if corrupt_every != 0 {
                 bail!("--corrupt-every applies to the serial models; a CAN bus checks its own frames (use --drop-frame-every)");

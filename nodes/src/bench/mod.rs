@@ -1,6 +1,7 @@
 //! `shroud bench`: reproduces the timing tables of paper 000 on the paper's own
 //! scene and prints them beside the paper's numbers (markdown, for the README).
 
+mod can;
 mod devices;
 mod latency;
 mod paper000;
@@ -20,6 +21,10 @@ pub enum Suite {
     /// Decode throughput of the real-device drivers (Hokuyo, RPLIDAR,
     /// Benewake) on recorded emulator streams, and last byte to encoded cloud.
     Devices,
+    /// The CAN device layer: generic DBC decode against a hand-shifted
+    /// decoder, and the ARS408 and Benewake CAN drivers on recorded emulator
+    /// traffic, with last frame to encoded cloud.
+    Can,
 }
 
 #[derive(Debug, Args)]
@@ -45,5 +50,6 @@ pub fn run(args: BenchArgs) -> Result<()> {
         Suite::Surrogate => paper000::run(&args),
         Suite::Latency => latency::run(&args),
         Suite::Devices => devices::run(&args),
+        Suite::Can => can::run(&args),
     }
 }

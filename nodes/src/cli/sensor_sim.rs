@@ -31,6 +31,8 @@ pub enum SimFormat {
     Slcan,
     /// The CAN range-sensor protocol as a candump log file (written as fast as possible).
     Candump,
+    /// A CAN --device on a SocketCAN interface (--port IFACE, e.g. vcan0).
+    Socketcan,
 }
 
 /// Coordinates on the serial wire.
@@ -165,6 +167,9 @@ pub fn run_sensor_sim_with(
     if let Some(model) = &args.device {
         return run_device_emulator(args, model, stop, ready);
     }
+    if args.format == SimFormat::Socketcan {
+        bail!("--format socketcan runs a CAN --device (ars408, tf03-can, ...) on an interface");
+    }
     let scene = Scene::by_name(&args.scene, args.points, args.seed)?;
     if !(args.rate.is_finite() && args.rate > 0.0) {
         bail!("--rate must be positive, got {}", args.rate);
@@ -254,17 +259,21 @@ fn run_device_emulator(
     stop: &AtomicBool,
     ready: &mut dyn FnMut(&Path),
 ) -> Result<()> {
-    if args.port.is_some() {
-        bail!("--device emulates on a pseudo-terminal; --port is for --format serial|slcan");
-    }
     let can = CAN_MODELS.contains(&model);
     match args.format {
         SimFormat::Candump if can => return write_can_log(args, model, stop, ready),
-        SimFormat::Candump => bail!(
-            "--format candump applies to the CAN models ({})",
+        SimFormat::Socketcan if can => return run_on_socketcan(args, model, stop, ready),
+        SimFormat::Candump | SimFormat::Socketcan => bail!(
+            "--format {:?} applies to the CAN models ({})",
+            args.format,
             CAN_MODELS.join(", ")
         ),
         SimFormat::Serial | SimFormat::Slcan => {}
+    }
+    if args.port.is_some() {
+        bail!(
+            "--device emulates on a pseudo-terminal; --port is for --format serial|slcan|socketcan"
+        );
     }
     let mut make = args.emulator.maker(model, args.corrupt_every, args.seed)?;
     let stats = run_emulator(&mut make, &args.emulator.line(), stop, ready, &mut |_| {})
@@ -319,6 +328,47 @@ fn write_can_log(
         "sensor-sim: {model}: {written} frames in {}",
         path.display()
     );
+    Ok(())
+}
+
+/// A CAN device on a SocketCAN interface (`--port`, e.g. `vcan0`) in real
+/// time, answering the frames other nodes send it, until stopped or
+/// `--duration` passes.
+fn run_on_socketcan(
+    args: &SensorSimArgs,
+    model: &str,
+    stop: &AtomicBool,
+    ready: &mut dyn FnMut(&Path),
+) -> Result<()> {
+    use crate::ingest::{CanSource, SocketCanSource};
+    let Some(interface) = &args.port else {
+        bail!("--format socketcan needs --port IFACE (e.g. vcan0)");
+    };
+    let mut device = args.emulator.can_maker(model, args.seed)?()?;
+    let mut bus = SocketCanSource::open(interface).map_err(|e| anyhow::anyhow!("{e}"))?;
+    ready(Path::new(interface));
+    let start = Instant::now();
+    let mut frames = Vec::new();
+    while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+        let now = start.elapsed().as_secs_f64();
+        if args.emulator.duration.is_some_and(|d| now >= d) {
+            break;
+        }
+        // A raw socket does not receive its own frames (CAN_RAW_RECV_OWN_MSGS
+        // is off by default): the device hears only the other nodes.
+        while let Some(received) = bus
+            .recv(Duration::from_millis(1))
+            .map_err(|e| anyhow::anyhow!("{e}"))?
+        {
+            device.receive(&received.frame, now);
+        }
+        frames.clear();
+        device.poll(now, &mut frames);
+        for (_, frame) in &frames {
+            bus.send(frame)
+                .with_context(|| format!("sending to {interface}"))?;
+        }
+    }
     Ok(())
 }
 

@@ -8,7 +8,7 @@ use super::backoff::{Backoff, BackoffConfig};
 use super::device_port::host_now;
 use super::{CanSource, ReaderError, SourceError};
 use shroud_core::ingest::can_device::{CanDeviceDriver, CanDriverOutput};
-use shroud_core::ingest::device::{DeviceState, DeviceStats};
+use shroud_core::ingest::device::DeviceState;
 use shroud_core::ingest::DecoderStats;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
@@ -32,14 +32,14 @@ pub struct BusStats {
 
 /// Runs `driver` on the sources `open` makes until `stop` is set or a source
 /// finishes (the end of a log). Every output other than a send goes to
-/// `on_output` with the driver's and the bus's counters. Failed opens and
+/// `on_output` with the driver (for its counters) and the bus's counters. Failed opens and
 /// disconnects are logged, counted and retried with backoff;
 /// [`SourceError::Fatal`] returns an error.
 pub fn run_can_device(
     open: &mut dyn FnMut() -> Result<Box<dyn CanSource>, SourceError>,
     driver: &mut dyn CanDeviceDriver,
     backoff: BackoffConfig,
-    on_output: &mut dyn FnMut(CanDriverOutput, &DeviceStats, &BusStats),
+    on_output: &mut dyn FnMut(CanDriverOutput, &dyn CanDeviceDriver, &BusStats),
     stop: &AtomicBool,
 ) -> Result<BusStats, ReaderError> {
     let mut stats = BusStats::default();
@@ -101,7 +101,7 @@ fn serve(
     driver: &mut dyn CanDeviceDriver,
     stats: &mut BusStats,
     outputs: &mut Vec<CanDriverOutput>,
-    on_output: &mut dyn FnMut(CanDriverOutput, &DeviceStats, &BusStats),
+    on_output: &mut dyn FnMut(CanDriverOutput, &dyn CanDeviceDriver, &BusStats),
     stop: &AtomicBool,
 ) -> Result<(), SourceError> {
     let poll = Duration::from_millis(50);
@@ -124,7 +124,7 @@ fn deliver(
     mut source: Option<&mut dyn CanSource>,
     driver: &dyn CanDeviceDriver,
     stats: &mut BusStats,
-    on_output: &mut dyn FnMut(CanDriverOutput, &DeviceStats, &BusStats),
+    on_output: &mut dyn FnMut(CanDriverOutput, &dyn CanDeviceDriver, &BusStats),
 ) {
     for output in outputs.drain(..) {
         match output {
@@ -141,7 +141,7 @@ fn deliver(
                     }
                 }
             }
-            other => on_output(other, driver.stats(), stats),
+            other => on_output(other, driver, stats),
         }
     }
 }

@@ -15,7 +15,6 @@ use crate::ingest::{
 use anyhow::{bail, Result};
 use clap::Args;
 use shroud_core::ingest::can_device::{CanDeviceDriver, CanDriverOutput, SensorCloud};
-use shroud_core::ingest::device::DeviceStats;
 use std::sync::Arc;
 
 #[derive(Debug, Clone, Args)]
@@ -80,7 +79,7 @@ fn run_device_clouds(
         .set_label("device.kind".into(), driver.kind().into());
     ctx.metrics
         .set_label("device.clock".into(), spec.clock().name().into());
-    let mut on_output = |output, device: &DeviceStats, bus: &BusStats| {
+    let mut on_output = |output, driver: &dyn CanDeviceDriver, bus: &BusStats| {
         match output {
             CanDriverOutput::Cloud(cloud) => publish(ctx, &mut out, &cloud),
             CanDriverOutput::State(state) => report_state(ctx, &state),
@@ -88,7 +87,7 @@ fn run_device_clouds(
             CanDriverOutput::Health { ok, detail } => report_health(ctx, ok, &detail),
             CanDriverOutput::Send(_) => {}
         }
-        mirror_counters(ctx, device, bus);
+        mirror_counters(ctx, driver, bus);
     };
     let stats = run_can_device(
         &mut || spec.open(),
@@ -97,7 +96,7 @@ fn run_device_clouds(
         &mut on_output,
         ctx.stop_flag(),
     )?;
-    mirror_counters(ctx, driver.stats(), &stats);
+    mirror_counters(ctx, driver.as_ref(), &stats);
     tracing::info!(
         "{} device stopped: {}; bus: {stats:?}",
         driver.kind(),
@@ -116,8 +115,11 @@ fn publish(ctx: &NodeContext, out: &mut CloudOut<'_>, cloud: &SensorCloud) {
         .set("cloud_points", cloud.scan.points.len() as f64);
 }
 
-fn mirror_counters(ctx: &NodeContext, device: &DeviceStats, bus: &BusStats) {
-    mirror_driver_counters(ctx, device, bus.transport.total_errors());
+fn mirror_counters(ctx: &NodeContext, driver: &dyn CanDeviceDriver, bus: &BusStats) {
+    mirror_driver_counters(ctx, driver.stats(), bus.transport.total_errors());
+    for (name, n) in driver.named_counters() {
+        ctx.metrics.set_named_counter(name, n);
+    }
     let m = &ctx.metrics;
     m.set_counter("opens", bus.opens);
     m.set_counter("open_failures", bus.open_failures);

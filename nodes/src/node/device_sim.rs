@@ -1,6 +1,7 @@
 //! The `device-sim` node: an emulated real range sensor on a pseudo-terminal
-//! (as `shroud sensor-sim --device`), supervised by a launch file, with its
-//! line's counters in the node's status.
+//! (as `shroud sensor-sim --device`; a CAN device behind an emulated SLCAN
+//! adapter), supervised by a launch file, with its line's counters in the
+//! node's status.
 
 use super::runtime::{run_node, NodeCommon};
 use crate::args::EmulatorArgs;
@@ -13,7 +14,9 @@ pub struct DeviceSimArgs {
     #[command(flatten)]
     pub common: NodeCommon,
     /// The device model: urg-04lx, utm-30lx, rplidar-a1, rplidar-a2, tfmini,
-    /// tfmini-s, tfmini-plus, tf-luna, tf02-pro.
+    /// tfmini-s, tfmini-plus, tf-luna, tf02-pro; or a CAN device behind an
+    /// emulated SLCAN adapter: ars408, tf03-can, tfmini-i-can, tf02-i-can,
+    /// tf02-can.
     #[arg(long)]
     pub device: String,
     #[command(flatten)]

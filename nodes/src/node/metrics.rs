@@ -2,12 +2,13 @@
 //! status publisher.
 
 use shroud_core::message::NodeStatusMessage;
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::sync::{Mutex, MutexGuard};
 
 #[derive(Debug, Default)]
 pub struct NodeMetrics {
-    counters: Mutex<BTreeMap<&'static str, u64>>,
+    counters: Mutex<BTreeMap<Cow<'static, str>, u64>>,
     gauges: Mutex<BTreeMap<&'static str, f64>>,
     labels: Mutex<BTreeMap<String, String>>,
 }
@@ -19,12 +20,19 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
 
 impl NodeMetrics {
     pub fn add(&self, counter: &'static str, n: u64) {
-        *lock(&self.counters).entry(counter).or_insert(0) += n;
+        *lock(&self.counters)
+            .entry(Cow::Borrowed(counter))
+            .or_insert(0) += n;
     }
 
     /// Sets a counter that another component keeps (e.g. a mailbox's drops).
     pub fn set_counter(&self, counter: &'static str, value: u64) {
-        lock(&self.counters).insert(counter, value);
+        lock(&self.counters).insert(Cow::Borrowed(counter), value);
+    }
+
+    /// [`Self::set_counter`] for a name made at run time (per sensor).
+    pub fn set_named_counter(&self, counter: String, value: u64) {
+        lock(&self.counters).insert(Cow::Owned(counter), value);
     }
 
     pub fn set(&self, gauge: &'static str, value: f64) {

@@ -45,8 +45,10 @@ impl RadarOutput {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct RadarSettings {
     /// Far-scan range in metres, 2 m steps (`MaxDistance`, 10 bits x 2 m):
-    /// an even number in 2..=2046. The radar clamps it to its own limits
-    /// (196..260 m standard range).
+    /// an even number in 196..=1200, the radar's own limits (196..260 m in
+    /// standard range, up to 1200 m in extended range). A radar that clamps
+    /// it further does not confirm it (counted `config_not_confirmed`, its
+    /// health says what it reports instead).
     pub max_distance_m: Option<u32>,
     /// Send the quality frames (0x702 / 0x60C).
     pub send_quality: Option<bool>,
@@ -108,10 +110,10 @@ impl Ars408Config {
             return Ok(());
         };
         if let Some(m) = settings.max_distance_m {
-            if !(2..=2046).contains(&m) || m % 2 != 0 {
+            if !(196..=1200).contains(&m) || m % 2 != 0 {
                 return Err(bad(
                     "max_distance_m",
-                    format!("{m} m is not an even number of metres in 2..=2046"),
+                    format!("{m} m is not an even number of metres in 196..=1200"),
                 ));
             }
         }

@@ -316,9 +316,18 @@ impl CycleAssembler {
                     "dropped_cycle_frame"
                 });
             }
+            Phase::Idle if section != Section::General => {
+                // Quality or extended frames after a cycle that was complete
+                // without them: the radar has just turned them on (as the
+                // configuration asks). Nothing published was missing them.
+                if let Err(loss) = values {
+                    stats.count(loss.counter());
+                }
+                stats.note("dropped_cycle_frame");
+            }
             Phase::Idle => {
-                // A frame after the cycle was complete: more frames than the
-                // status announced, or the next status was lost.
+                // A general frame after the cycle was complete: more frames
+                // than the status announced, or the next status was lost.
                 drop_cycle(values.err().unwrap_or(Loss::Lost), stats);
                 self.phase = Phase::Discarding;
             }

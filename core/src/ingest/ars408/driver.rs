@@ -9,7 +9,7 @@ use super::cycle::{
 };
 use super::error::Ars408Error;
 use super::layout::{code, Layout, RadarMessage};
-use super::radar_state::{version_identity, RadarState};
+use super::radar_state::{output_type_name, version_identity, RadarState};
 use crate::ingest::can_device::{CanDeviceDriver, CanDriverOutput, TimedFrame};
 use crate::ingest::dbc::CanDatabase;
 use crate::ingest::device::{DeviceState, DeviceStats, HostTime};
@@ -130,9 +130,23 @@ impl Ars408Driver {
     /// not take, what did not; reported when it changes.
     fn report_health(&mut self, out: &mut Vec<CanDriverOutput>) {
         let errors = self.radar.map(|r| r.error_names()).unwrap_or_default();
-        let ok = errors.is_empty() && self.config_problem.is_none();
+        // A radar sending the other list publishes nothing this driver reads:
+        // that is a fault, whether or not this driver configures it.
+        let wanted = self.config.output;
+        let other_output = self
+            .radar
+            .filter(|r| r.output_type != wanted.code())
+            .map(|r| {
+                format!(
+                    "the radar outputs {}, this driver reads {}",
+                    output_type_name(r.output_type),
+                    wanted.name()
+                )
+            });
+        let ok = errors.is_empty() && self.config_problem.is_none() && other_output.is_none();
         let mut parts: Vec<String> = errors.iter().map(|e| (*e).to_owned()).collect();
         parts.extend(self.config_problem.clone());
+        parts.extend(other_output);
         let detail = if parts.is_empty() {
             "no errors".to_owned()
         } else {
@@ -166,7 +180,9 @@ impl Ars408Driver {
             self.stats.count("bad_frame");
             return;
         };
-        if state.sensor_id != u32::from(self.config.sensor_id) {
+        let id_differs = state.sensor_id != u32::from(self.config.sensor_id);
+        if id_differs && self.radar.is_none_or(|r| r.sensor_id != state.sensor_id) {
+            // Once per change: the state comes 20 times a second.
             self.stats.count("sensor_id_mismatch");
         }
         self.radar = Some(state);
@@ -182,6 +198,13 @@ impl Ars408Driver {
                 configurator.progress = Progress::Confirmed;
                 self.config_problem = None;
                 self.stats.note("config_confirmed");
+            } else if !matches && configurator.progress == Progress::Confirmed {
+                // It reported what it was told, and no longer does: it
+                // restarted with its stored settings (they are not stored in
+                // its NVM). Configure it again, and confirm again.
+                self.stats.count("config_lost");
+                let again = configurator.start(frame.received);
+                self.send(again, out);
             }
         }
         self.report_health(out);

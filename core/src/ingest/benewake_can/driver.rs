@@ -189,6 +189,14 @@ impl CanDeviceDriver for BenewakeCanDriver {
             device_time_ms: reading.timestamp_ms,
         };
         let mut done = Vec::new();
+        // A cycle whose time ran out before this frame closes without it,
+        // even when no poll came between (the node polls a quiet bus only).
+        if let Some(expired) = self
+            .cycle
+            .poll(frame.received, self.config.cycle_timeout_ns)
+        {
+            done.push(expired);
+        }
         self.cycle
             .add(k, report, frame.stamp_ns, frame.received, &mut done);
         for cycle in done {
@@ -228,5 +236,12 @@ impl CanDeviceDriver for BenewakeCanDriver {
 
     fn stats(&self) -> &DeviceStats {
         &self.stats
+    }
+
+    fn named_counters(&self) -> Vec<(String, u64)> {
+        self.missing
+            .iter()
+            .map(|(name, n)| (format!("missing_reading.{name}"), *n))
+            .collect()
     }
 }

@@ -5,6 +5,14 @@
 //! [`CanDeviceDriver`](crate::ingest::can_device::CanDeviceDriver) (kind
 //! `benewake_can`).
 //!
+//! Unlike a radar's cycle, whose frames together make one measurement (one
+//! lost frame drops the cycle whole), each rangefinder's frame is a whole
+//! measurement of its own: a cycle's cloud holds the readings that arrived
+//! within it (every sensor once, or until a sensor reports again, or until
+//! the cycle timeout), and a sensor that did not report is counted as
+//! `missing_reading`, never guessed. A consumer that needs every beam reads
+//! the cloud's `sensor_index` channel.
+//!
 //! Counters the driver keeps in its
 //! [`DeviceStats`](crate::ingest::device::DeviceStats):
 //! - errors: `missing_reading` (per sensor in

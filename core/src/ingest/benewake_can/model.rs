@@ -116,7 +116,9 @@ impl BenewakeCanModel {
     /// out of range or too weak).
     pub fn max_range_cm(self) -> u32 {
         match self {
-            Self::Tf03 => 18_000,
+            // 18000 cm is the TF03's out-of-range code (its default "over
+            // range threshold", TF03 manual V1.2.2 p.14), not a reading.
+            Self::Tf03 => 17_999,
             Self::TfminiI => 1_200,
             Self::Tf02I => 4_000,
             Self::Tf02 => 2_199,

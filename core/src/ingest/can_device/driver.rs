@@ -58,4 +58,9 @@ pub trait CanDeviceDriver: Send {
     fn state(&self) -> &DeviceState;
     /// The counters so far (kept across reconnects).
     fn stats(&self) -> &DeviceStats;
+    /// Counters beyond [`DeviceStats`]' kinds, by name (a rangefinder
+    /// array's missing readings per sensor, `missing_reading.<name>`).
+    fn named_counters(&self) -> Vec<(String, u64)> {
+        Vec::new()
+    }
 }

@@ -97,6 +97,13 @@ impl SignalSpec {
             }
         }
         let raw = ((value - self.offset) / self.factor).round();
+        // The rounded value must itself lie in the range: the slack admits a
+        // value that rounds onto an end, never one that rounds past it.
+        let encoded = raw * self.factor + self.offset;
+        let epsilon = 1e-9 * self.factor.abs().max(encoded.abs());
+        if self.has_range() && !(encoded >= self.min - epsilon && encoded <= self.max + epsilon) {
+            return Err(out_of_range(self.min, self.max));
+        }
         let bits = self.raw_bits(raw).ok_or_else(|| out_of_range(lo, hi))?;
         let mask = self.mask() << shift;
         let word = (self.word(data) & !mask) | ((bits << shift) & mask);

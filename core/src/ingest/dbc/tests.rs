@@ -153,9 +153,10 @@ fn ars408_radar_state_straddling_fields() {
 
 #[test]
 fn tf03_little_endian_golden() {
-    // Dist 1234 cm = 0x04D2, Strength 567 = 0x0237, both LE (research note §2.1).
+    // Dist 1234 cm = 0x04D2, Strength 567 = 0x0237, both LE, then two
+    // reserved bytes: 6 in all (research note §2.1, TF03 manual p.12).
     let db = db("benewake_tf03");
-    let f = frame(0x003, false, &[0xD2, 0x04, 0x37, 0x02, 0, 0, 0, 0]);
+    let f = frame(0x003, false, &[0xD2, 0x04, 0x37, 0x02, 0, 0]);
     assert_decodes(&db, &f, &[("Dist", 1234.0), ("Strength", 567.0)]);
     let back = db
         .encode("TF03_Measurement", &[("Dist", 1234.0), ("Strength", 567.0)])
@@ -438,7 +439,7 @@ fn builtin_messages_have_the_agreed_names() {
                 ("VersionID", 0x700, 4, 5),
             ],
         ),
-        ("benewake_tf03", &[("TF03_Measurement", 0x003, 8, 2)]),
+        ("benewake_tf03", &[("TF03_Measurement", 0x003, 6, 2)]),
         ("benewake_tfmini_i", &[("TFminiI_Measurement", 0x003, 8, 3)]),
         ("benewake_tf02", &[("TF02_Measurement", 0x0009_0002, 8, 4)]),
     ];

@@ -75,8 +75,11 @@ impl Default for RadarConfig {
     }
 }
 
-/// Smallest MaxDistance the emulator accepts (a 0 would blank the radar).
-const MIN_MAX_DISTANCE_M: f64 = 2.0;
+/// The far range's lower limit of a standard-range unit (sensors.md §2.2;
+/// a smaller request is raised to it).
+const MIN_MAX_DISTANCE_M: f64 = 196.0;
+/// The far range's upper limit of a standard-range unit.
+const MAX_MAX_DISTANCE_M: f64 = 260.0;
 
 impl RadarConfig {
     /// Applies a decoded 0x200: each field whose `*_valid` bit is set, when its
@@ -86,8 +89,10 @@ impl RadarConfig {
         let code = |name: &str| message.get(name).map(|v| v.round().max(0.0) as u64);
         if valid("MaxDistance_valid") {
             if let Some(m) = message.get("MaxDistance") {
-                if m.is_finite() && m >= MIN_MAX_DISTANCE_M {
-                    self.max_distance_m = m;
+                // A standard-range unit clamps the far range to its limits
+                // (196..260 m); it reports the clamped value in 0x201.
+                if m.is_finite() {
+                    self.max_distance_m = m.clamp(MIN_MAX_DISTANCE_M, MAX_MAX_DISTANCE_M);
                 }
             }
         }

@@ -376,17 +376,23 @@ fn a_radar_turned_away_sees_only_its_static_clusters() {
 }
 
 #[test]
-fn max_distance_limits_the_clusters() {
+fn max_distance_is_clamped_to_the_radars_limits_and_limits_the_clusters() {
     let mut radar = radar(&CanEmulatorOptions::default());
     // MaxDistance_valid (byte 0 bit 0), MaxDistance 20 m = raw 10: byte 1 =
-    // 10 >> 2 = 0x02, byte 2 = (10 & 3) << 6 = 0x80.
+    // 10 >> 2 = 0x02, byte 2 = (10 & 3) << 6 = 0x80. Below a standard-range
+    // unit's 196 m: it takes 196 m, and says so.
     radar.receive(&frame(0x200, false, "0102800000000000"), 0.0);
     let frames = run(radar.as_mut(), 0.3);
     let db = db();
     let state = frames.iter().rev().find(|(_, f)| f.id == 0x201).unwrap().1;
-    assert_eq!(get(&db, &state, "MaxDistanceCfg"), 20.0);
+    assert_eq!(get(&db, &state, "MaxDistanceCfg"), 196.0);
+    // 300 m = raw 150: byte 1 = 150 >> 2 = 0x25, byte 2 = (150 & 3) << 6 = 0x80.
+    radar.receive(&frame(0x200, false, "0125800000000000"), 0.3);
+    let frames = run(radar.as_mut(), 0.6);
+    let state = frames.iter().rev().find(|(_, f)| f.id == 0x201).unwrap().1;
+    assert_eq!(get(&db, &state, "MaxDistanceCfg"), 260.0);
     for (_, f) in frames.iter().filter(|(_, f)| f.id == 0x701) {
-        assert!(get(&db, f, "DistLong") < 20.5);
+        assert!(get(&db, f, "DistLong") < 260.5);
     }
 }
 

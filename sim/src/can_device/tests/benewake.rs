@@ -64,7 +64,7 @@ fn tf03_reports_the_ray_cast_distance_at_100_hz() {
     let frames = run_past(tf03.as_mut(), 1.0);
     assert_eq!(frames.len(), 100);
     for (t, f) in &frames {
-        assert_eq!((f.id, f.extended, f.len), (0x003, false, 8));
+        assert_eq!((f.id, f.extended, f.len), (0x003, false, 6));
         // Hand layout (TF03 V1.2.2 Table 7): Dist LE in bytes 0-1, Strength
         // LE in bytes 2-3.
         let dist = f64::from(u16::from_le_bytes([f.data[0], f.data[1]]));

@@ -227,3 +227,41 @@ fn objects_output_type_is_asked_as_1() {
     // 1 -> byte 4 bit 3 = 0x08; SendExtInfo 43|1 -> byte 5 bit 3 = 0x08.
     assert_eq!(sends(&out)[0].payload(), &[0x28, 0, 0, 0, 0x08, 0x08, 0, 0]);
 }
+
+#[test]
+fn a_radar_that_forgets_its_confirmed_configuration_is_configured_again() {
+    let (mut d, _) = driver(configured());
+    feed(&mut d, 10, &[radar_state(0, asked_state())]);
+    assert_eq!(d.stats().notes("config_confirmed"), 1);
+    // It restarts with its stored settings (objects, 196 m): configure again.
+    let forgot = State {
+        max_distance_m: 196,
+        output_type: 1,
+        ..State::default()
+    };
+    let out = feed(&mut d, 2000, &[radar_state(0, forgot)]);
+    let sent = sends(&out);
+    assert_eq!(sent.len(), 1, "{out:?}");
+    assert_eq!(sent[0].payload(), &CONFIG_FRAME);
+    assert_eq!(d.stats().errors("config_lost"), 1);
+    // A state that matches again confirms again.
+    feed(&mut d, 2100, &[radar_state(0, asked_state())]);
+    assert_eq!(d.stats().notes("config_confirmed"), 2);
+}
+
+#[test]
+fn a_radar_sending_the_other_list_is_unhealthy_even_unconfigured() {
+    let (mut d, _) = driver(Ars408Config::default());
+    let objects = State {
+        output_type: 1,
+        ..State::default()
+    };
+    let out = feed(&mut d, 10, &[radar_state(0, objects)]);
+    let health = out.iter().find_map(|o| match o {
+        CanDriverOutput::Health { ok, detail } => Some((*ok, detail.clone())),
+        _ => None,
+    });
+    let (ok, detail) = health.expect("a health report");
+    assert!(!ok);
+    assert!(detail.contains("outputs objects"), "{detail}");
+}

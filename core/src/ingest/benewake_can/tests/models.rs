@@ -121,7 +121,9 @@ fn invalid_readings_are_counted_by_kind_and_make_no_point() {
         assert_eq!(d.stats().total_errors(), 0);
     }
     // And the edges that are valid.
-    assert_eq!(Model::Tf03.verdict(18_000, 40, None), Validity::Valid);
+    assert_eq!(Model::Tf03.verdict(17_999, 40, None), Validity::Valid);
+    // 18000 is the TF03's out-of-range code, however strong the return.
+    assert_eq!(Model::Tf03.verdict(18_000, 500, None), Validity::OutOfRange);
     assert_eq!(Model::TfminiI.verdict(1_200, 100, None), Validity::Valid);
     assert_eq!(Model::Tf02I.verdict(4_000, 60, None), Validity::Valid);
     assert_eq!(Model::Tf02.verdict(2_199, 0, Some(7)), Validity::Valid);
