@@ -128,11 +128,19 @@ fn can_a_cycle_that_loses_a_frame_is_dropped_whole_and_counted() {
         counter(s, "incomplete_cycle") >= 3 && counter(s, "published") >= 6
     });
     assert!(counter(&status, "lost_frame") >= 1, "{status:?}");
-    // Every published cloud is whole: its channels match its points, and
-    // the clusters run in the order the radar numbers them.
-    for cloud in clouds(&cloud_inbox, 10, &node) {
-        channels(&cloud);
+    // Every published cloud is sound: each channel holds a value per point,
+    // and the static clusters are all there (that no cycle with a hole is
+    // published is proved frame by frame in core's cycle tests).
+    let got = clouds(&cloud_inbox, 10, &node);
+    for cloud in &got {
+        channels(cloud);
     }
+    let static_clusters = got
+        .iter()
+        .map(|c| c.point_array().unwrap().len())
+        .min()
+        .unwrap();
+    assert!(static_clusters >= 5, "the 5 static clusters at least");
 }
 
 #[test]
@@ -144,7 +152,7 @@ fn can_an_unplugged_adapter_is_reopened_and_the_radar_configured_again() {
             "--mount",
             RADAR_MOUNT,
             "--unplug-after",
-            "3",
+            "6",
             "--unplug-for",
             "1.5",
         ],
@@ -152,6 +160,11 @@ fn can_an_unplugged_adapter_is_reopened_and_the_radar_configured_again() {
     let cloud_inbox = rig.inbox("cloud", "dev");
     let status_inbox = rig.inbox("status", "dev");
     let node = can_node(&rig, "ars408", 500_000, &["--mount", RADAR_MOUNT]);
+    // Configured once before the unplug (6 s after the emulator started).
+    let first = status_until(&status_inbox, &node, "a first configuration", |s| {
+        counter(s, "config_confirmed") >= 1
+    });
+    assert_eq!(counter(&first, "disconnects"), 0, "{first:?}");
     let status = status_until(&status_inbox, &node, "a second configuration", |s| {
         counter(s, "disconnects") >= 1 && counter(s, "config_confirmed") >= 2
     });
@@ -292,7 +305,10 @@ fn can_a_silent_rangefinder_is_counted_missing_and_the_rest_published() {
     });
     assert_eq!(counter(&status, "bad_frame"), 0, "{status:?}");
     // Counted per sensor: the ghost, never the one that reports.
-    assert!(counter(&status, "missing_reading.ghost") >= 10, "{status:?}");
+    assert!(
+        counter(&status, "missing_reading.ghost") >= 10,
+        "{status:?}"
+    );
     assert_eq!(counter(&status, "missing_reading.a"), 0, "{status:?}");
     let cloud = &clouds(&cloud_inbox, 1, &node)[0];
     assert!(channels(cloud).contains_key("device_time_ms"));
@@ -309,19 +325,20 @@ fn can_bad_settings_are_named_errors_before_the_node_starts() {
     .unwrap();
     let empty_dbc = dir.path().join("empty.dbc");
     std::fs::write(&empty_dbc, "VERSION \"\"\n").unwrap();
-    let cases: [(&[&str], &str); 5] = [
-        (&["--device", "ars408", "--sensor-id", "9"], "sensor"),
-        (&["--device", "ars408", "--dbc", &path(&bad_dbc)], "bad.dbc"),
+    let log = dir.path().join("empty.log");
+    std::fs::write(&log, "").unwrap();
+    let source = format!("candump:{}", path(&log));
+    let (bad, empty) = (path(&bad_dbc), path(&empty_dbc));
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["--device", "ars408", "--sensor-id", "9"], "sensor"),
+        (vec!["--device", "ars408", "--dbc", &bad], "bad.dbc"),
+        (vec!["--device", "ars408", "--dbc", &empty], "RadarState"),
         (
-            &["--device", "ars408", "--dbc", &path(&empty_dbc)],
-            "RadarState",
-        ),
-        (
-            &["--device", "tf03", "--rangefinder", "a@0x003"],
+            vec!["--device", "tf03", "--rangefinder", "a@0x003"],
             "--rangefinder",
         ),
         (
-            &[
+            vec![
                 "--device",
                 "tf03",
                 "--rangefinder",
@@ -331,15 +348,63 @@ fn can_bad_settings_are_named_errors_before_the_node_starts() {
             ],
             "0x3",
         ),
+        // Settings a device does not read are refused, not ignored.
+        (
+            vec!["--device", "tf03", "--sensor-id", "1"],
+            "--sensor-id does not apply to --device tf03",
+        ),
+        (
+            vec!["--device", "tf03", "--mount", "0,0,0,0,0,0"],
+            "--mount does not apply",
+        ),
+        (
+            vec!["--device", "ars408", "--rangefinder", "a@3:0,0,0,0,0,0"],
+            "--rangefinder does not apply",
+        ),
+        (
+            vec![
+                "--device",
+                "ars408",
+                "--no-configure",
+                "--radar-quality",
+                "false",
+            ],
+            "--radar-quality does not apply to --device ars408 with --no-configure",
+        ),
+        (
+            vec!["--device", "ars408", "--radar-max-distance", "100"],
+            "196..=1200",
+        ),
+        (
+            vec!["--radar-output", "objects"],
+            "--radar-output does not apply",
+        ),
     ];
     for (extra, needle) in cases {
-        let mut args = vec!["node", "can", "--source", "candump:/nonexistent.log"];
-        args.extend_from_slice(extra);
+        let mut args = vec!["node", "can", "--source", &source];
+        args.extend_from_slice(&extra);
         let mut proc = Proc::start(&args);
         let status = proc.wait_exit(Duration::from_secs(20));
         let output = proc.output();
         assert!(!status.success(), "{extra:?} was accepted");
         assert!(output.contains(needle), "{extra:?}: {output}");
+        assert!(
+            !output.contains("started"),
+            "{extra:?} joined the graph: {output}"
+        );
+    }
+    // A source that cannot work is named too, before the node starts.
+    for (source, needle) in [
+        ("candump:/nonexistent.log", "does not exist"),
+        ("slcan:/dev/x:50001", "not an SLCAN bitrate"),
+    ] {
+        let mut proc = Proc::start(&["node", "can", "--device", "ars408", "--source", source]);
+        assert!(!proc.wait_exit(Duration::from_secs(20)).success());
+        assert!(
+            proc.output().contains(needle),
+            "{source}: {}",
+            proc.output()
+        );
     }
 }
 

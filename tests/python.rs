@@ -67,6 +67,41 @@ fn documented_example(marker: &str) -> String {
     block[code_start..code_end].to_string()
 }
 
+/// Starts the example `script` listening to the graph at `endpoint`.
+fn spawn_example(py: &Path, script: &Path, endpoint: &str, ns: &str) -> std::process::Child {
+    Command::new(py)
+        .arg(script)
+        .args([endpoint, ns])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+/// The example's JSON lines and its stdout, once it exits (killed at
+/// `deadline`); panics with its output if it failed.
+fn example_lines(
+    mut child: std::process::Child,
+    deadline: Instant,
+) -> (Vec<serde_json::Value>, String) {
+    while child.try_wait().unwrap().is_none() && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    let _ = child.kill();
+    let out = child.wait_with_output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "python failed (or did not finish in time): {stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    (lines, stdout)
+}
+
 #[test]
 fn python_decodes_what_the_nodes_send() {
     let py = python();
@@ -93,13 +128,7 @@ fn python_decodes_what_the_nodes_send() {
         .concat(),
     );
 
-    let child = Command::new(&py)
-        .arg(&script)
-        .args([endpoint.as_str(), ns])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
+    let child = spawn_example(&py, &script, &endpoint, ns);
     // Collect our own decoding of the same clouds while Python listens.
     let mut sums: HashMap<u64, (usize, f64)> = HashMap::new();
     let deadline = Instant::now() + Duration::from_secs(60);
@@ -112,17 +141,7 @@ fn python_decodes_what_the_nodes_send() {
             sums.insert(msg.sequence, (pts.len(), sum));
         }
     }
-    let out = child.wait_with_output().unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "python failed: {stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let lines: Vec<serde_json::Value> = stdout
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let (lines, stdout) = example_lines(child, deadline);
     assert_eq!(
         lines.len(),
         3,
@@ -183,29 +202,8 @@ fn python_reads_radar_channels() {
         ]
         .concat(),
     );
-    let mut child = Command::new(&py)
-        .arg(&script)
-        .args([endpoint.as_str(), ns])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let deadline = Instant::now() + Duration::from_secs(60);
-    while child.try_wait().unwrap().is_none() && Instant::now() < deadline {
-        std::thread::sleep(Duration::from_millis(100));
-    }
-    let _ = child.kill();
-    let out = child.wait_with_output().unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "python failed (or gave no cloud in 60 s): {stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let lines: Vec<serde_json::Value> = stdout
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let child = spawn_example(&py, &script, &endpoint, ns);
+    let (lines, _) = example_lines(child, Instant::now() + Duration::from_secs(60));
     let names: Vec<&str> = lines
         .iter()
         .map(|l| l["channel"].as_str().unwrap())

@@ -14,9 +14,10 @@ use shroud_core::ingest::dbc::{builtin, CanDatabase, MAX_DBC_BYTES};
 use std::path::PathBuf;
 
 /// The device on the bus.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
 pub enum CanDeviceKind {
     /// shroud's own CAN scan protocol (`PROTOCOLS.md` §2).
+    #[default]
     Shroud,
     /// Continental ARS408-21 radar.
     Ars408,
@@ -51,65 +52,54 @@ pub enum RadarOutputArg {
     Objects,
 }
 
-/// `--device` and the settings of the real CAN devices.
-#[derive(Debug, Clone, Args)]
+/// `--device` and the settings of the real CAN devices. A setting given for
+/// a device it does not apply to is a named error, never ignored.
+#[derive(Debug, Clone, Default, Args)]
 pub struct CanDeviceArgs {
     /// The device on the bus.
     #[arg(long, value_enum, default_value_t = CanDeviceKind::Shroud)]
     pub device: CanDeviceKind,
-    /// Read the device's signals from this DBC file instead of the one shroud
-    /// ships (a firmware variant); it must name the same messages and signals.
+    /// ARS408: read the radar's signals from this DBC file instead of the one
+    /// shroud ships (a firmware variant); it must name the same messages and
+    /// signals.
     #[arg(long)]
     pub dbc: Option<PathBuf>,
-    /// ARS408: the radar's sensor ID (0..=7); its CAN ids are moved by 0x10 per unit.
-    #[arg(long, default_value_t = 0)]
-    pub sensor_id: u8,
-    /// ARS408: the list to read.
-    #[arg(long, value_enum, default_value_t = RadarOutputArg::Clusters)]
-    pub radar_output: RadarOutputArg,
-    /// ARS408: the maximum distance to configure, metres (196..=1200 in 2 m steps).
+    /// ARS408: the radar's sensor ID (0..=7, default 0); its CAN ids are
+    /// moved by 0x10 per unit.
+    #[arg(long)]
+    pub sensor_id: Option<u8>,
+    /// ARS408: the list to read (default clusters).
+    #[arg(long, value_enum)]
+    pub radar_output: Option<RadarOutputArg>,
+    /// ARS408: the maximum distance to configure, metres (196..=1200 in 2 m
+    /// steps; default: the radar's own).
     #[arg(long)]
     pub radar_max_distance: Option<u32>,
-    /// ARS408: send the quality messages (0x702 / 0x60C) too.
-    #[arg(long, default_value_t = true, action = clap::ArgAction::Set)]
-    pub radar_quality: bool,
-    /// ARS408: send the objects' extended messages (0x60D).
-    #[arg(long, default_value_t = false, action = clap::ArgAction::Set)]
-    pub radar_ext_info: bool,
+    /// ARS408: configure the quality messages (0x702 / 0x60C) on or off
+    /// (default true).
+    #[arg(long, action = clap::ArgAction::Set)]
+    pub radar_quality: Option<bool>,
+    /// ARS408: configure the objects' extended messages (0x60D) on or off
+    /// (default false).
+    #[arg(long, action = clap::ArgAction::Set)]
+    pub radar_ext_info: Option<bool>,
     /// ARS408: do not configure the radar on start (read what it sends).
     #[arg(long)]
     pub no_configure: bool,
     /// ARS408: the radar's pose in the robot's frame: x,y,z (m),
-    /// roll,pitch,yaw (degrees).
-    #[arg(long, default_value = "0,0,0,0,0,0", allow_hyphen_values = true)]
-    pub mount: String,
+    /// roll,pitch,yaw (degrees); default the origin.
+    #[arg(long, allow_hyphen_values = true)]
+    pub mount: Option<String>,
     /// Benewake: one rangefinder on the bus, `NAME@ID:x,y,z,roll,pitch,yaw`
     /// (its CAN id as the device sends it, hex with 0x or decimal; its pose in
     /// the robot's frame, m and degrees). Repeat for several; without any,
     /// one at the model's default id at the origin.
     #[arg(long = "rangefinder", allow_hyphen_values = true)]
     pub rangefinders: Vec<String>,
-    /// A device silent for this long (seconds) is reported as recovering.
-    #[arg(long, default_value_t = 1.0)]
-    pub silence_timeout: f64,
-}
-
-impl Default for CanDeviceArgs {
-    fn default() -> Self {
-        Self {
-            device: CanDeviceKind::Shroud,
-            dbc: None,
-            sensor_id: 0,
-            radar_output: RadarOutputArg::Clusters,
-            radar_max_distance: None,
-            radar_quality: true,
-            radar_ext_info: false,
-            no_configure: false,
-            mount: "0,0,0,0,0,0".into(),
-            rangefinders: Vec::new(),
-            silence_timeout: 1.0,
-        }
-    }
+    /// A device silent for this long (seconds, default 1) is reported as
+    /// recovering.
+    #[arg(long)]
+    pub silence_timeout: Option<f64>,
 }
 
 /// One `--rangefinder NAME@ID:POSE`.
@@ -153,35 +143,87 @@ impl CanDeviceArgs {
         self.device != CanDeviceKind::Shroud
     }
 
+    /// The settings given, by flag, for refusing those a device does not read.
+    fn given(&self) -> [(&'static str, bool); 10] {
+        [
+            ("--dbc", self.dbc.is_some()),
+            ("--sensor-id", self.sensor_id.is_some()),
+            ("--radar-output", self.radar_output.is_some()),
+            ("--radar-max-distance", self.radar_max_distance.is_some()),
+            ("--radar-quality", self.radar_quality.is_some()),
+            ("--radar-ext-info", self.radar_ext_info.is_some()),
+            ("--no-configure", self.no_configure),
+            ("--mount", self.mount.is_some()),
+            ("--rangefinder", !self.rangefinders.is_empty()),
+            ("--silence-timeout", self.silence_timeout.is_some()),
+        ]
+    }
+
+    /// Refuses every given setting that `device` does not read.
+    fn refuse_all_but(&self, device: &str, read: &[&str]) -> Result<()> {
+        for (flag, given) in self.given() {
+            if given && !read.contains(&flag) {
+                bail!("{flag} does not apply to --device {device}");
+            }
+        }
+        Ok(())
+    }
+
+    /// For `--device shroud`: none of the device settings apply.
+    pub fn check_protocol_only(&self) -> Result<()> {
+        self.refuse_all_but("shroud (shroud's own protocol)", &[])
+    }
+
     /// The driver these options describe (never for `--device shroud`).
     pub fn driver(&self) -> Result<Box<dyn CanDeviceDriver>> {
-        if !(self.silence_timeout.is_finite() && self.silence_timeout > 0.0) {
+        let silence = self.silence_timeout.unwrap_or(1.0);
+        if !(silence.is_finite() && silence > 0.0) {
             bail!("--silence-timeout must be a positive number of seconds");
         }
-        let silence_timeout_ns = (self.silence_timeout * 1e9) as u64;
+        let silence_timeout_ns = (silence * 1e9) as u64;
         if let Some(model) = self.device.benewake_model() {
+            self.refuse_all_but(model.name(), &["--rangefinder", "--silence-timeout"])?;
             return self.benewake(model, silence_timeout_ns);
         }
         if self.device != CanDeviceKind::Ars408 {
             bail!("--device shroud has no device driver");
         }
-        if !self.rangefinders.is_empty() {
-            bail!("--rangefinder applies to Benewake devices, not the ARS408");
-        }
+        let mut read = vec![
+            "--dbc",
+            "--sensor-id",
+            "--radar-output",
+            "--mount",
+            "--silence-timeout",
+            "--no-configure",
+        ];
+        let device = if self.no_configure {
+            "ars408 with --no-configure"
+        } else {
+            read.extend([
+                "--radar-max-distance",
+                "--radar-quality",
+                "--radar-ext-info",
+            ]);
+            "ars408"
+        };
+        self.refuse_all_but(device, &read)?;
         let settings = (!self.no_configure).then_some(RadarSettings {
             max_distance_m: self.radar_max_distance,
-            send_quality: Some(self.radar_quality),
-            send_ext_info: Some(self.radar_ext_info),
+            send_quality: Some(self.radar_quality.unwrap_or(true)),
+            send_ext_info: Some(self.radar_ext_info.unwrap_or(false)),
             ..RadarSettings::default()
         });
         let config = Ars408Config {
-            sensor_id: self.sensor_id,
-            output: match self.radar_output {
+            sensor_id: self.sensor_id.unwrap_or(0),
+            output: match self.radar_output.unwrap_or(RadarOutputArg::Clusters) {
                 RadarOutputArg::Clusters => RadarOutput::Clusters,
                 RadarOutputArg::Objects => RadarOutput::Objects,
             },
             settings,
-            mount: self.mount.parse().context("--mount")?,
+            mount: match &self.mount {
+                Some(pose) => pose.parse().context("--mount")?,
+                None => MountPose::default(),
+            },
             silence_timeout_ns,
         };
         let database = self.database("ars408")?;
@@ -193,17 +235,11 @@ impl CanDeviceArgs {
         model: BenewakeCanModel,
         silence_timeout_ns: u64,
     ) -> Result<Box<dyn CanDeviceDriver>> {
-        if self.mount != "0,0,0,0,0,0" {
-            bail!("--mount is the radar's: give each rangefinder's pose in --rangefinder NAME@ID:POSE");
-        }
         let parsed: Vec<RangefinderArg> = self
             .rangefinders
             .iter()
             .map(|r| r.parse())
             .collect::<Result<_>>()?;
-        if self.dbc.is_some() {
-            bail!("--dbc applies to the ARS408; the Benewake layouts are fixed by their manuals");
-        }
         let (_, extended) = model.default_id();
         let sensors = if parsed.is_empty() {
             vec![RangefinderConfig::new(

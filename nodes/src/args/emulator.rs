@@ -72,7 +72,7 @@ pub struct EmulatorArgs {
     #[arg(long, default_value_t = 0)]
     pub sensor_id: u8,
     /// CAN devices: a Benewake rangefinder on the bus, `NAME@ID:x,y,z,roll,pitch,yaw`
-    /// (repeat for several; default one at the model's id, at --mount).
+    /// (repeat for several; default one at the model's id, at the origin).
     #[arg(long = "rangefinder", allow_hyphen_values = true)]
     pub rangefinders: Vec<String>,
     /// CAN devices: leave one frame out of the middle of every n-th
@@ -108,6 +108,7 @@ impl EmulatorArgs {
     /// Checks the options and loads the world, then returns a maker of fresh
     /// emulators of `model` (one per power-up).
     pub fn maker(&self, model: &str, corrupt_every: u64, seed: u64) -> Result<EmulatorMaker> {
+        self.check_line()?;
         if CAN_MODELS.contains(&model) {
             if corrupt_every != 0 {
                 bail!("--corrupt-every applies to the serial models; a CAN bus checks its own frames (use --drop-frame-every)");
@@ -140,23 +141,6 @@ impl EmulatorArgs {
                     "{flag} applies to the CAN models ({}) only",
                     CAN_MODELS.join(", ")
                 );
-            }
-        }
-        for (name, value) in [
-            ("--stall-for", self.stall_for),
-            ("--unplug-for", self.unplug_for),
-        ] {
-            if !(value.is_finite() && value >= 0.0) {
-                bail!("{name} must be a non-negative number of seconds, got {value}");
-            }
-        }
-        for (name, value) in [
-            ("--stall-after", self.stall_after),
-            ("--unplug-after", self.unplug_after),
-            ("--duration", self.duration),
-        ] {
-            if value.is_some_and(|v| !(v.is_finite() && v >= 0.0)) {
-                bail!("{name} must be a non-negative number of seconds");
             }
         }
         let hokuyo_only = [
@@ -225,6 +209,18 @@ impl EmulatorArgs {
         if self.mount.sweep.is_some() || self.mount.mount_joint.is_some() {
             bail!("an emulated CAN device sits on a fixed --mount");
         }
+        let radar = model == "ars408";
+        if radar && !self.rangefinders.is_empty() {
+            bail!("--rangefinder applies to the Benewake CAN models, not the ARS408");
+        }
+        if !radar && self.sensor_id != 0 {
+            bail!("--sensor-id applies to the ARS408, not {model}");
+        }
+        if !radar && self.mount.mount != "0,0,0,0,0,0" {
+            bail!(
+                "{model}: give each rangefinder's pose in --rangefinder NAME@ID:POSE, not --mount"
+            );
+        }
         let radar_mount: MountPose = self.mount.mount.parse().context("--mount")?;
         let rangefinders = self
             .rangefinders
@@ -253,6 +249,44 @@ impl EmulatorArgs {
         can_emulator(model, &options, world.clone()).map_err(anyhow::Error::msg)?;
         let model = model.to_owned();
         Ok(move || can_emulator(&model, &options, world.clone()).map_err(anyhow::Error::msg))
+    }
+
+    /// The line's times: finite and non-negative seconds.
+    pub fn check_line(&self) -> Result<()> {
+        for (name, value) in [
+            ("--stall-for", self.stall_for),
+            ("--unplug-for", self.unplug_for),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                bail!("{name} must be a non-negative number of seconds, got {value}");
+            }
+        }
+        for (name, value) in [
+            ("--stall-after", self.stall_after),
+            ("--unplug-after", self.unplug_after),
+            ("--duration", self.duration),
+        ] {
+            if value.is_some_and(|v| !(v.is_finite() && v >= 0.0)) {
+                bail!("{name} must be a non-negative number of seconds");
+            }
+        }
+        Ok(())
+    }
+
+    /// Refuses the pseudo-terminal line's options, for an emulator that runs
+    /// elsewhere (`--format candump`, `--format socketcan`).
+    pub fn refuse_line_options(&self, format: &str) -> Result<()> {
+        let line_only = [
+            ("--link", self.link.is_some()),
+            ("--stall-after", self.stall_after.is_some()),
+            ("--unplug-after", self.unplug_after.is_some()),
+        ];
+        for (flag, given) in line_only {
+            if given {
+                bail!("{flag} applies to an emulator on a pseudo-terminal, not --format {format}");
+            }
+        }
+        Ok(())
     }
 
     /// The line's schedule of faults and its link.

@@ -50,8 +50,8 @@ pub enum SimEncoding {
 pub struct SensorSimArgs {
     /// serial or slcan (to a pseudo-terminal, or --port), or candump (to
     /// --output). With a CAN --device: slcan (an emulated SLCAN adapter on a
-    /// pseudo-terminal, the default) or candump (--duration seconds of the
-    /// device's traffic into --output).
+    /// pseudo-terminal), candump (--duration seconds of the device's traffic
+    /// into --output) or socketcan (on the interface --port names).
     #[arg(long, alias = "transport", value_enum, default_value_t = SimFormat::Serial)]
     pub format: SimFormat,
     /// Write to this serial port instead of creating a pseudo-terminal.
@@ -294,9 +294,14 @@ fn write_can_log(
     let Some(path) = &args.output else {
         bail!("--format candump needs --output FILE");
     };
-    let Some(duration) = args.emulator.duration.filter(|d| *d > 0.0) else {
+    let Some(duration) = args.emulator.duration.filter(|d| d.is_finite() && *d > 0.0) else {
         bail!("--format candump needs --duration SECONDS (the log is written as fast as possible)");
     };
+    args.emulator.check_line()?;
+    args.emulator.refuse_line_options("candump")?;
+    if args.port.is_some() {
+        bail!("--format candump writes --output; --port is for --format serial|slcan|socketcan");
+    }
     let mut device = args.emulator.can_maker(model, args.seed)?()?;
     let file =
         std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
@@ -344,6 +349,8 @@ fn run_on_socketcan(
     let Some(interface) = &args.port else {
         bail!("--format socketcan needs --port IFACE (e.g. vcan0)");
     };
+    args.emulator.check_line()?;
+    args.emulator.refuse_line_options("socketcan")?;
     let mut device = args.emulator.can_maker(model, args.seed)?()?;
     let mut bus = SocketCanSource::open(interface).map_err(|e| anyhow::anyhow!("{e}"))?;
     ready(Path::new(interface));

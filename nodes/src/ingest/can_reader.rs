@@ -4,11 +4,13 @@
 //! command lines and configuration files.
 
 use super::backoff::{Backoff, BackoffConfig};
+use super::can_source::open_with_backoff;
 use super::candump_source::{CandumpReplay, ReplayPace};
 use super::report::ErrorReporter;
 use super::slcan_source::SlcanSource;
 use super::socketcan_source::SocketCanSource;
 use super::{CanSource, ReaderError, ReaderStats, SourceError};
+use shroud_core::ingest::can::slcan::{bitrate_code, BITRATES};
 use shroud_core::ingest::can::{CanScanDecoder, CanSensorConfig};
 use shroud_core::ingest::can_device::FrameClock;
 use shroud_core::ingest::Scan;
@@ -47,18 +49,15 @@ pub fn run_can_reader(
     let poll = Duration::from_millis(100);
     let mut finished = false;
     while !finished && !stop.load(Ordering::Relaxed) {
-        let mut source = match open() {
-            Ok(source) => source,
-            Err(SourceError::Fatal(message)) => return Err(SourceError::Fatal(message).into()),
-            Err(SourceError::Finished(_)) => break,
-            Err(error) => {
-                stats.open_failures += 1;
-                if stats.open_failures == 1 || stats.open_failures.is_power_of_two() {
-                    tracing::warn!(attempts = stats.open_failures, "{error}; retrying");
-                }
-                backoff.wait(stop);
-                continue;
-            }
+        let opened = open_with_backoff(
+            open,
+            &mut stats.open_failures,
+            &mut backoff,
+            stop,
+            &mut |_| {},
+        )?;
+        let Some(mut source) = opened else {
+            break;
         };
         stats.opens += 1;
         let name = source.name();
@@ -130,6 +129,16 @@ pub enum CanSourceSpec {
 }
 
 impl CanSourceSpec {
+    /// Checks what can be checked before opening: a log file exists.
+    pub fn check(&self) -> Result<(), String> {
+        match self {
+            Self::Candump { path, .. } if !path.is_file() => {
+                Err(format!("candump log {} does not exist", path.display()))
+            }
+            _ => Ok(()),
+        }
+    }
+
     /// Which clock the frames' stamps are on.
     pub fn clock(&self) -> FrameClock {
         match self {
@@ -185,6 +194,11 @@ impl FromStr for CanSourceSpec {
                 };
                 if path.is_empty() {
                     return Err(format!("{s:?}: no serial port path"));
+                }
+                if let Some(bps) = bitrate.filter(|&b| bitrate_code(b).is_none()) {
+                    return Err(format!(
+                        "{s:?}: {bps} bit/s is not an SLCAN bitrate (one of {BITRATES:?})"
+                    ));
                 }
                 Ok(Self::Slcan {
                     path: path.to_owned(),
@@ -268,6 +282,7 @@ mod tests {
             "socketcan:",
             "slcan:@9600",
             "slcan:/dev/x@fast",
+            "slcan:/dev/x:50001",
             "candump:a@0",
             "candump:@max",
             "x:y",

@@ -1,11 +1,13 @@
 //! The one interface every CAN frame source offers the CAN readers.
 
+use super::backoff::Backoff;
 use super::device_port::host_now;
-use super::SourceError;
+use super::{ReaderError, SourceError};
 use shroud_core::ingest::can::CanFrame;
 use shroud_core::ingest::can_device::{FrameClock, TimedFrame};
 use shroud_core::ingest::DecoderStats;
 use std::io;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 /// A source of classic CAN frames: a SocketCAN interface, an SLCAN adapter, a
@@ -73,4 +75,33 @@ pub fn received_now(frame: CanFrame) -> TimedFrame {
         clock: FrameClock::HostReceipt,
         received,
     }
+}
+
+/// Opens a source with `open`, retrying failed opens with `backoff` (each
+/// counted in `failures`, logged at the first and every power of two, and
+/// told to `on_failure` with the count) until one opens. `None`: stopped, or
+/// the source has finished for good.
+pub(super) fn open_with_backoff(
+    open: &mut dyn FnMut() -> Result<Box<dyn CanSource>, SourceError>,
+    failures: &mut u64,
+    backoff: &mut Backoff,
+    stop: &AtomicBool,
+    on_failure: &mut dyn FnMut(u64),
+) -> Result<Option<Box<dyn CanSource>>, ReaderError> {
+    while !stop.load(Ordering::Relaxed) {
+        match open() {
+            Ok(source) => return Ok(Some(source)),
+            Err(SourceError::Fatal(message)) => return Err(SourceError::Fatal(message).into()),
+            Err(SourceError::Finished(_)) => return Ok(None),
+            Err(error) => {
+                *failures += 1;
+                if *failures == 1 || failures.is_power_of_two() {
+                    tracing::warn!(attempts = *failures, "{error}; retrying");
+                }
+                on_failure(*failures);
+                backoff.wait(stop);
+            }
+        }
+    }
+    Ok(None)
 }

@@ -1,7 +1,10 @@
 //! SocketCAN source: a Linux CAN interface (`can0`, `vcan0`) through the
-//! `socketcan` crate. Error frames are counted and skipped. Frames carry the
+//! `socketcan` crate. Error frames (delivered only where an error mask is
+//! set, which this source does not set) are skipped. Frames carry the
 //! kernel's receive timestamp (`SO_TIMESTAMPNS`), taken when the frame
-//! reached the socket layer, not when this node got round to reading it.
+//! reached the socket layer, not when this node got round to reading it; a
+//! frame the kernel delivered without one is dated on arrival here (counted
+//! in `unstamped_frames`).
 
 use super::device_port::host_now;
 use super::{CanSource, SourceError};
@@ -18,6 +21,8 @@ pub struct SocketCanSource {
     socket: CanSocket,
     /// Error frames the controller reported (bus-off, error passive, ...).
     pub error_frames: u64,
+    /// Frames that came without a kernel timestamp (dated on arrival).
+    pub unstamped_frames: u64,
 }
 
 impl SocketCanSource {
@@ -33,6 +38,7 @@ impl SocketCanSource {
             interface: interface.to_owned(),
             socket,
             error_frames: 0,
+            unstamped_frames: 0,
         })
     }
 
@@ -47,16 +53,22 @@ impl CanSource for SocketCanSource {
         let read = self
             .socket
             .set_read_timeout(timeout.max(Duration::from_millis(1)))
-            .and_then(|()| self.socket.read_frame_with_timestamp());
+            .and_then(|()| self.socket.read_frame_with_timestamps());
         match read {
-            Ok((frame, stamp)) => {
+            Ok((frame, stamps)) => {
                 let received = host_now();
                 let Some(ours) = from_socketcan(&frame) else {
                     self.error_frames += 1;
                     tracing::debug!(interface = %self.interface, "CAN error frame: {frame:?}");
                     return Ok(None);
                 };
-                let stamp_ns = epoch_ns(stamp).unwrap_or(received.unix_ns);
+                let stamp_ns = match stamps.socket.and_then(epoch_ns) {
+                    Some(ns) => ns,
+                    None => {
+                        self.unstamped_frames += 1;
+                        received.unix_ns
+                    }
+                };
                 Ok(Some(TimedFrame {
                     frame: ours,
                     stamp_ns,

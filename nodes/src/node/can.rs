@@ -6,15 +6,16 @@
 
 use super::device_status::{mirror_driver_counters, report_health, report_identity, report_state};
 use super::runtime::{run_node, NodeCommon, NodeContext};
-use super::scan_publisher::{cloud_publisher, max_skew_ns, CloudOut};
+use super::scan_publisher::{cloud_publisher, max_skew_ns, mirror_reader_counters, CloudOut};
 use crate::args::CanDeviceArgs;
 use crate::ingest::{
     host_now, run_can_device, run_can_reader, BackoffConfig, BusStats, CanReaderConfig,
     CanSourceSpec,
 };
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::Args;
 use shroud_core::ingest::can_device::{CanDeviceDriver, CanDriverOutput, SensorCloud};
+use shroud_core::ingest::device::DeviceState;
 use std::sync::Arc;
 
 #[derive(Debug, Clone, Args)]
@@ -45,13 +46,13 @@ pub fn run_can(args: CanNodeArgs) -> Result<()> {
     if args.device.is_real_device() {
         // Settings are checked before the node joins the graph.
         let driver = args.device.driver()?;
+        check_source(&spec, &args.source)?;
         return run_node(&common, "can", move |ctx| {
             run_device_clouds(&ctx, driver, &spec, &args.stream, max_skew_ns)
         });
     }
-    if args.device.dbc.is_some() || !args.device.rangefinders.is_empty() {
-        bail!("--dbc and --rangefinder apply to real devices (--device ars408, tf03, ...)");
-    }
+    args.device.check_protocol_only()?;
+    check_source(&spec, &args.source)?;
     run_node(&common, "can", move |ctx| {
         let mut publish = cloud_publisher(&ctx, &args.stream, &args.source, max_skew_ns)?;
         let stats = run_can_reader(
@@ -60,9 +61,15 @@ pub fn run_can(args: CanNodeArgs) -> Result<()> {
             &mut publish,
             ctx.stop_flag(),
         )?;
-        tracing::info!("CAN reader stopped: {stats}");
+        // The counters as the reader leaves them (the last status has them).
+        mirror_reader_counters(&ctx, &stats);
         Ok(())
     })
+}
+
+fn check_source(spec: &CanSourceSpec, text: &str) -> Result<()> {
+    spec.check()
+        .map_err(|e| anyhow::anyhow!("--source {text:?}: {e}"))
 }
 
 /// Runs `driver` on the bus `spec` names and publishes its clouds until the
@@ -79,13 +86,15 @@ fn run_device_clouds(
         .set_label("device.kind".into(), driver.kind().into());
     ctx.metrics
         .set_label("device.clock".into(), spec.clock().name().into());
+    // Until the bus opens, nothing vouches for the device.
+    report_state(ctx, &DeviceState::Disconnected);
     let mut on_output = |output, driver: &dyn CanDeviceDriver, bus: &BusStats| {
         match output {
-            CanDriverOutput::Cloud(cloud) => publish(ctx, &mut out, &cloud),
-            CanDriverOutput::State(state) => report_state(ctx, &state),
-            CanDriverOutput::Identity(pairs) => report_identity(ctx, pairs),
-            CanDriverOutput::Health { ok, detail } => report_health(ctx, ok, &detail),
-            CanDriverOutput::Send(_) => {}
+            Some(CanDriverOutput::Cloud(cloud)) => publish(ctx, &mut out, &cloud),
+            Some(CanDriverOutput::State(state)) => report_state(ctx, &state),
+            Some(CanDriverOutput::Identity(pairs)) => report_identity(ctx, pairs),
+            Some(CanDriverOutput::Health { ok, detail }) => report_health(ctx, ok, &detail),
+            Some(CanDriverOutput::Send(_)) | None => {}
         }
         mirror_counters(ctx, driver, bus);
     };

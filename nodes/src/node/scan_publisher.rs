@@ -94,13 +94,18 @@ pub(super) fn cloud_publisher<'a>(
         // The scan's last byte has just been read: it enters shroud now.
         let received = Instant::now();
         out.publish(&scan, || received.elapsed().as_nanos() as u64);
-        ctx.metrics.set_counter(
-            "dropped_malformed",
-            stats.decoder.total_errors() + stats.transport.total_errors(),
-        );
-        ctx.metrics.set_counter("disconnects", stats.disconnects);
-        ctx.metrics
-            .set_counter("open_failures", stats.open_failures);
-        ctx.metrics.set_counter("scans", stats.scans);
+        mirror_reader_counters(ctx, stats);
     })
+}
+
+/// A protocol reader's counters into the node's status.
+pub(super) fn mirror_reader_counters(ctx: &NodeContext, stats: &ReaderStats) {
+    let m = &ctx.metrics;
+    m.set_counter(
+        "dropped_malformed",
+        stats.decoder.total_errors() + stats.transport.total_errors(),
+    );
+    m.set_counter("disconnects", stats.disconnects);
+    m.set_counter("open_failures", stats.open_failures);
+    m.set_counter("scans", stats.scans);
 }

@@ -136,6 +136,18 @@ impl CanDeviceDriver for BenewakeCanDriver {
         self.last_frame = None;
         self.silent = false;
         self.set_state(DeviceState::Connecting, out);
+        // What is on the bus, as configured (the devices do not say).
+        let sensors = &self.config.sensors;
+        let mut models: Vec<&str> = sensors.iter().map(|s| s.model.name()).collect();
+        models.dedup();
+        let ids: Vec<String> = sensors
+            .iter()
+            .map(|s| format!("{}@{:#x}", s.name, s.id))
+            .collect();
+        out.push(CanDriverOutput::Identity(vec![
+            ("model".to_owned(), models.join(",")),
+            ("rangefinders".to_owned(), ids.join(",")),
+        ]));
     }
 
     fn receive(&mut self, frame: &TimedFrame, out: &mut Vec<CanDriverOutput>) {

@@ -42,7 +42,7 @@ pub enum CanDriverOutput {
 /// goes away. Drivers never block, never read a clock and never panic on
 /// any frame.
 pub trait CanDeviceDriver: Send {
-    /// The device kind (`ars408`, `tf03`, ...).
+    /// The device kind (`ars408`, `benewake_can`).
     fn kind(&self) -> &'static str;
     /// The bus has just been opened (the first time or after a reconnect):
     /// forget partial cycles and start configuring. `writable` is false on a

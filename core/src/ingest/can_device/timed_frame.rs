@@ -8,7 +8,7 @@ use super::super::device::HostTime;
 /// status so that a user knows what a cloud's stamp means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FrameClock {
-    /// The kernel's receive timestamp (SocketCAN `SO_TIMESTAMP`).
+    /// The kernel's receive timestamp (SocketCAN `SO_TIMESTAMPNS`).
     Kernel,
     /// The stamp written in a candump log at recording time.
     Log,

@@ -134,6 +134,8 @@ where
     ctx.stop.store(true, Ordering::Relaxed);
     watchdog.arm();
     status.abort();
+    // A periodic publication under way lands before the final one.
+    let _ = status.await;
     publish_final_status(&ctx, kind, started);
     drop(token);
     watchdog.stage("closing the zenoh session");
