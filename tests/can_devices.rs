@@ -468,3 +468,20 @@ fn can_an_ars408_on_a_vcan_interface_when_the_kernel_has_one() {
         channels(&cloud);
     }
 }
+
+/// The benchmark's own checks (a replay reproduces the recorded clouds; the
+/// hand-shifted reference agrees with the DBC) run in CI; its timings do not
+/// decide anything here.
+#[test]
+fn can_the_bench_replays_the_recorded_traffic_exactly() {
+    let mut bench = Proc::start(&["bench", "can", "--quick"]);
+    assert!(bench.wait_exit(LONG).success(), "{}", bench.output());
+    let output = bench.output();
+    for needle in [
+        "hand-shifted 0x701",
+        "ars408 (clusters + quality)",
+        "3x tf03-can",
+    ] {
+        assert!(output.contains(needle), "{needle}: {output}");
+    }
+}

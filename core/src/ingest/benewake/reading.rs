@@ -17,19 +17,24 @@ pub enum Validity {
     /// The strength is 65535 (TFmini Plus, TF-Luna): the receiver is
     /// overexposed.
     Saturated,
-    /// Distance 0, or beyond the model's maximum range.
+    /// Distance 0, or at or beyond the model's out-of-range code or maximum
+    /// range.
     OutOfRange,
+    /// The device's own reliability byte says not to use it (the legacy
+    /// TF02 on CAN).
+    Unreliable,
 }
 
 impl Validity {
     /// The counter a reading of this kind is counted under (`weak_return`,
-    /// `saturated`, `out_of_range`), `None` for a valid one.
+    /// `saturated`, `out_of_range`, `unreliable`), `None` for a valid one.
     pub fn counter(self) -> Option<&'static str> {
         match self {
             Self::Valid => None,
             Self::WeakReturn => Some("weak_return"),
             Self::Saturated => Some("saturated"),
             Self::OutOfRange => Some("out_of_range"),
+            Self::Unreliable => Some("unreliable"),
         }
     }
 }

@@ -1,6 +1,8 @@
 //! The Benewake CAN models and what differs between them: frame layout (by
 //! their builtin DBC), default id, range limit and which readings are not
-//! measurements.
+//! measurements (a [`Validity`], shared with the UART models).
+
+pub use crate::ingest::benewake::Validity;
 
 /// A Benewake rangefinder with a CAN interface (sensors.md §2.1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -15,34 +17,6 @@ pub enum BenewakeCanModel {
     /// Legacy TF02 CAN: big-endian dist and strength, exposure time and
     /// reliability bytes, extended id 0x00090002.
     Tf02,
-}
-
-/// Whether a reading is a measurement, and if not, why.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Validity {
-    Valid,
-    /// The strength is below the model's threshold.
-    WeakReturn,
-    /// Strength 65535: the receiver is overexposed.
-    Saturated,
-    /// Distance 0, or at/beyond the model's out-of-range code or maximum.
-    OutOfRange,
-    /// The device's own reliability byte says not to use it (TF02).
-    Unreliable,
-}
-
-impl Validity {
-    /// The invalid-reading counter (`weak_return`, `saturated`,
-    /// `out_of_range`, `unreliable`), `None` for a valid reading.
-    pub fn counter(self) -> Option<&'static str> {
-        match self {
-            Self::Valid => None,
-            Self::WeakReturn => Some("weak_return"),
-            Self::Saturated => Some("saturated"),
-            Self::OutOfRange => Some("out_of_range"),
-            Self::Unreliable => Some("unreliable"),
-        }
-    }
 }
 
 impl BenewakeCanModel {
