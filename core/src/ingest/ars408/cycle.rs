@@ -233,12 +233,25 @@ enum Phase {
 /// section) arrives, or a RadarState arrives saying they are off, the cycle
 /// is complete without them. So until the first RadarState (50 ms after the
 /// radar starts) a cycle may be published one frame late, never wrongly.
+///
+/// A complete cycle is held until the next status frame shows that no status
+/// was lost in between (its MeasCounter is the held one's plus one): the
+/// general and quality frames carry no counter, so a cycle whose frames were
+/// lost could otherwise be completed by the next cycle's frames (its status
+/// lost too) and published as a piece of that cycle under the wrong stamp.
+/// This costs one cycle of latency (72 ms on the ARS408), which the cloud's
+/// age includes: it counts from the cycle's first frame.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct CycleAssembler {
     rule: IdRule,
     max_count: usize,
     phase: Phase,
+    /// The last complete cycle, waiting for the next status to vouch for it.
+    held: Option<CompleteCycle>,
 }
+
+/// MeasCounter is 16 bits: it wraps to 0 after 65535.
+const MEAS_COUNTER_MODULUS: u32 = 1 << 16;
 
 impl CycleAssembler {
     pub fn new(rule: IdRule, max_count: usize) -> Self {
@@ -246,14 +259,37 @@ impl CycleAssembler {
             rule,
             max_count,
             phase: Phase::Starting,
+            held: None,
         }
     }
 
     /// Forgets everything (connect, disconnect); `true` if a cycle was open.
     pub fn reset(&mut self) -> bool {
-        let was_open = matches!(self.phase, Phase::Open(_));
+        let was_open = matches!(self.phase, Phase::Open(_)) || self.held.is_some();
         self.phase = Phase::Starting;
+        self.held = None;
         was_open
+    }
+
+    /// The next status arrived (`None`: it did not decode): the held cycle
+    /// is published if the status follows it, else dropped and counted
+    /// (`incomplete_cycle`, `lost_status`).
+    fn vouch_for_held(
+        &mut self,
+        next: Option<u32>,
+        stats: &mut DeviceStats,
+        done: &mut Vec<CompleteCycle>,
+    ) {
+        let Some(held) = self.held.take() else {
+            return;
+        };
+        let follows = (held.status.meas_counter + 1) % MEAS_COUNTER_MODULUS;
+        if next.is_some_and(|c| c % MEAS_COUNTER_MODULUS == follows) {
+            done.push(held);
+        } else {
+            stats.count("incomplete_cycle");
+            stats.count("lost_status");
+        }
     }
 
     /// A status frame: `Ok` what it announced (with the expectations of the
@@ -267,6 +303,8 @@ impl CycleAssembler {
         done: &mut Vec<CompleteCycle>,
     ) {
         self.close_before_next(stats, done);
+        let counter = status.as_ref().ok().map(|s| s.meas_counter);
+        self.vouch_for_held(counter, stats, done);
         let status = match status {
             Ok(status) if status.count <= self.max_count => status,
             Ok(_) | Err(_) => {
@@ -327,7 +365,9 @@ impl CycleAssembler {
             }
             Phase::Idle => {
                 // A general frame after the cycle was complete: more frames
-                // than the status announced, or the next status was lost.
+                // than the status announced, or the next status was lost (and
+                // the held cycle may hold the next cycle's frames).
+                self.held = None;
                 drop_cycle(values.err().unwrap_or(Loss::Lost), stats);
                 self.phase = Phase::Discarding;
             }
@@ -378,10 +418,11 @@ impl CycleAssembler {
         }
     }
 
-    fn publish_if_complete(&mut self, done: &mut Vec<CompleteCycle>) {
+    /// A complete open cycle is held for the next status to vouch for.
+    fn publish_if_complete(&mut self, _done: &mut Vec<CompleteCycle>) {
         if matches!(&self.phase, Phase::Open(open) if open.complete()) {
             if let Phase::Open(open) = std::mem::replace(&mut self.phase, Phase::Idle) {
-                done.push(open.finish());
+                self.held = Some(open.finish());
             }
         }
     }

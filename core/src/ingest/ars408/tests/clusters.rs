@@ -34,6 +34,8 @@ fn golden_cluster_in_a_one_cluster_cycle() {
             radar_state(0, State::clusters(false)),
             cluster_status(0, 1, 0, 42),
             general,
+            // The next status vouches for the cycle (its counter follows).
+            cluster_status(0, 0, 0, 43),
         ],
     );
     assert!(out.contains(&CanDriverOutput::State(DeviceState::Streaming)));
@@ -73,6 +75,7 @@ fn golden_frame_as_the_fourth_cluster() {
     ];
     frames.extend((0..3).map(|id| cluster_general(0, General::at(id, 1.0 + id as f64, 0.1))));
     frames.push(CanFrame::new(0x701, false, &GOLDEN).unwrap());
+    frames.push(cluster_status(0, 0, 0, 8));
     let clouds = clouds(&feed(&mut d, 0, &frames));
     assert_eq!(clouds.len(), 1);
     let p = clouds[0].scan.points[3];
@@ -103,6 +106,7 @@ fn three_clusters_with_quality() {
     let (mut d, _) = driver(Ars408Config::default());
     let mut frames = vec![radar_state(0, State::clusters(true))];
     frames.extend(three_with_quality());
+    frames.push(cluster_status(0, 0, 0, 101));
     let out = feed(&mut d, 0, &frames);
     let clouds = clouds(&out);
     assert_eq!(clouds.len(), 1);
@@ -132,7 +136,9 @@ fn three_clusters_with_quality() {
 fn quality_is_inferred_from_the_frames_before_any_radar_state() {
     // With quality frames: the cycle waits for them and carries them.
     let (mut d, _) = driver(Ars408Config::default());
-    let out = feed(&mut d, 0, &three_with_quality());
+    let mut frames = three_with_quality();
+    frames.push(cluster_status(0, 0, 0, 101));
+    let out = feed(&mut d, 0, &frames);
     let c = clouds(&out);
     assert_eq!(c.len(), 1);
     assert_eq!(channel(&c[0], "pdh0").len(), 3);
@@ -149,10 +155,12 @@ fn quality_is_inferred_from_the_frames_before_any_radar_state() {
     assert!(clouds(&first).is_empty(), "undecided until the next status");
     let next = feed(&mut d, 10, &[cluster_status(0, 0, 0, 2)]);
     let c = clouds(&next);
-    assert_eq!(c.len(), 2, "the pending cycle, then the empty one");
+    assert_eq!(c.len(), 1, "the pending cycle (the empty one is held)");
     assert_eq!(c[0].scan.points.len(), 1);
     assert_eq!(c[0].scan.channels.len(), 4);
-    assert_eq!(c[1].scan.points.len(), 0);
+    let c = clouds(&feed(&mut d, 20, &[cluster_status(0, 0, 0, 3)]));
+    assert_eq!(c.len(), 1);
+    assert_eq!(c[0].scan.points.len(), 0);
     assert_eq!(d.stats().total_errors(), 0);
     // Or when a RadarState says quality is off.
     let (mut d, _) = driver(Ars408Config::default());
@@ -164,8 +172,14 @@ fn quality_is_inferred_from_the_frames_before_any_radar_state() {
             cluster_general(0, General::at(0, 3.0, 0.1)),
         ],
     );
-    let c = clouds(&feed(&mut d, 5, &[radar_state(0, State::clusters(false))]));
+    let settled = feed(&mut d, 5, &[radar_state(0, State::clusters(false))]);
+    assert!(
+        clouds(&settled).is_empty(),
+        "complete, held for the next status"
+    );
+    let c = clouds(&feed(&mut d, 6, &[cluster_status(0, 0, 0, 2)]));
     assert_eq!(c.len(), 1);
+    assert_eq!(c[0].scan.points.len(), 1);
 }
 
 #[test]
@@ -177,6 +191,7 @@ fn zero_clusters_is_an_empty_cloud() {
         &[
             radar_state(0, State::clusters(true)),
             cluster_status(0, 0, 0, 9),
+            cluster_status(0, 0, 0, 10),
         ],
     ));
     assert_eq!(c.len(), 1);
@@ -204,7 +219,9 @@ fn a_lost_general_drops_the_cycle_whole_and_the_next_is_fine() {
     assert_eq!(d.stats().errors("lost_frame"), 1);
     // The rest of the broken cycle is ignored, not counted again.
     assert_eq!(d.stats().notes("dropped_cycle_frame"), 1);
-    let c = clouds(&feed(&mut d, 10, &cycle(2, &[0, 1, 2], 3)));
+    let mut frames = cycle(2, &[0, 1, 2], 3);
+    frames.push(cluster_status(0, 0, 0, 3));
+    let c = clouds(&feed(&mut d, 10, &frames));
     assert_eq!(c.len(), 1);
     assert_eq!(c[0].scan.points.len(), 3);
     assert_eq!(c[0].scan.sequence, 2);
@@ -227,6 +244,7 @@ fn the_next_status_arriving_early_drops_the_short_cycle() {
     feed(&mut d, 0, &[radar_state(0, State::clusters(false))]);
     let mut frames = cycle(1, &[0, 1], 3);
     frames.extend(cycle(2, &[0], 1));
+    frames.push(cluster_status(0, 0, 0, 3));
     let c = clouds(&feed(&mut d, 1, &frames));
     assert_eq!(c.len(), 1, "only the second cycle");
     assert_eq!(c[0].scan.sequence, 2);
@@ -238,12 +256,37 @@ fn the_next_status_arriving_early_drops_the_short_cycle() {
 fn too_many_frames_or_a_lost_status_is_counted_once() {
     let (mut d, _) = driver(Ars408Config::default());
     feed(&mut d, 0, &[radar_state(0, State::clusters(false))]);
-    // Cycle 1 announces 1 and is complete; the extra general (its status
-    // lost) has no open cycle.
-    let c = clouds(&feed(&mut d, 1, &cycle(1, &[0, 0, 1], 1)));
-    assert_eq!(c.len(), 1);
+    // Cycle 1 announces 1 and is complete; the extra general has no open
+    // cycle. It may be the next cycle's (its status lost), and then cycle 1
+    // may hold frames of it too: the held cycle is dropped, counted once.
+    let mut frames = cycle(1, &[0, 0, 1], 1);
+    frames.push(cluster_status(0, 0, 0, 2));
+    let c = clouds(&feed(&mut d, 1, &frames));
+    assert!(c.is_empty());
     assert_eq!(d.stats().errors("incomplete_cycle"), 1);
     assert_eq!(d.stats().errors("lost_frame"), 1);
+}
+
+#[test]
+fn a_lost_status_is_caught_by_the_counter_and_the_held_cycle_dropped() {
+    let (mut d, _) = driver(Ars408Config::default());
+    feed(&mut d, 0, &[radar_state(0, State::clusters(false))]);
+    // Cycle 1 announces one cluster and loses it; cycle 2's status is lost
+    // and its first general completes cycle 1 by count. Cycle 3's status
+    // (counter 3, not 2) shows a status went missing: nothing is published.
+    let mut frames = vec![cluster_status(0, 1, 0, 1)];
+    frames.push(cluster_general(0, General::at(0, 20.0, 0.1)));
+    frames.push(cluster_status(0, 0, 0, 3));
+    let c = clouds(&feed(&mut d, 1, &frames));
+    assert!(c.is_empty(), "{c:?}");
+    assert_eq!(d.stats().errors("lost_status"), 1);
+    assert_eq!(d.stats().errors("incomplete_cycle"), 1);
+    // The counter wraps: 65535 is followed by 0.
+    let frames = [cluster_status(0, 0, 0, 65_535), cluster_status(0, 0, 0, 0)];
+    let (mut d, _) = driver(Ars408Config::default());
+    feed(&mut d, 0, &[radar_state(0, State::clusters(false))]);
+    assert_eq!(clouds(&feed(&mut d, 1, &frames)).len(), 1);
+    assert_eq!(d.stats().total_errors(), 0);
 }
 
 #[test]
@@ -295,6 +338,7 @@ fn sensor_id_2_moves_every_id_by_0x20() {
         radar_state(0x20, state),
         cluster_status(0x20, 1, 0, 5),
         cluster_general(0x20, General::at(0, 2.0, 0.1)),
+        cluster_status(0x20, 0, 0, 6),
     ];
     assert_eq!(frames[1].id, 0x620);
     assert_eq!(frames[2].id, 0x721);
@@ -315,6 +359,7 @@ fn a_yaw_of_90_degrees_turns_x_into_y() {
         radar_state(0, State::clusters(false)),
         cluster_status(0, 1, 0, 1),
         cluster_general(0, General::at(0, 10.0, 0.9)),
+        cluster_status(0, 0, 0, 2),
     ];
     let c = clouds(&feed(&mut d, 0, &frames));
     // (10, 0.9, 0) turned 90° about z is (-0.9, 10, 0), then moved by (1, 0, 0.5).

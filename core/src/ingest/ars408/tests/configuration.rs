@@ -56,7 +56,8 @@ fn connect_sends_the_configuration_and_a_matching_state_confirms_it() {
     assert!(out.contains(&CanDriverOutput::State(DeviceState::Configuring)));
     assert_eq!(d.stats().commands, 1);
     // Clusters arriving while configuring are still assembled.
-    let c = clouds(&feed(&mut d, 10, &[cluster_status(0, 0, 0, 1)]));
+    let statuses = [cluster_status(0, 0, 0, 1), cluster_status(0, 0, 0, 2)];
+    let c = clouds(&feed(&mut d, 10, &statuses));
     assert_eq!(c.len(), 1);
     assert_eq!(d.state(), &DeviceState::Configuring);
     // A state that does not match yet: still configuring.

@@ -37,6 +37,8 @@ fn an_object_cycle_with_quality_and_extended_info() {
         object_quality(12, 2, 7),
         object_extended(7, 1, 90.0, 4.6, 1.8),
         object_extended(12, 2, -10.0, 1.0, 0.6),
+        // The next status vouches for the cycle.
+        object_status(0, 301),
     ];
     let c = clouds(&feed(&mut d, 0, &frames));
     assert_eq!(c.len(), 1);
@@ -76,21 +78,24 @@ fn objects_without_quality_and_a_repeated_track_id() {
         object_status(1, 1),
         object_general(General::at(3, 5.0, 0.0)),
         object_extended(3, 0, 0.0, 0.2, 0.2),
+        object_status(0, 2),
     ];
     let c = clouds(&feed(&mut d, 1, &frames));
     assert_eq!(c.len(), 1);
     assert_eq!(c[0].scan.channels.len(), 9, "general + extended");
-    // Two generals with one track id.
+    // Two generals with one track id (the empty cycle 2 before it is whole).
     let frames = [
-        object_status(2, 2),
+        object_status(2, 3),
         object_general(General::at(3, 5.0, 0.0)),
         object_general(General::at(3, 6.0, 0.0)),
     ];
-    assert!(clouds(&feed(&mut d, 10, &frames)).is_empty());
+    let c = clouds(&feed(&mut d, 10, &frames));
+    assert_eq!(c.len(), 1);
+    assert!(c[0].scan.points.is_empty());
     assert_eq!(d.stats().errors("incomplete_cycle"), 1);
     // An extended frame whose id is not the general's in that position.
     let frames = [
-        object_status(1, 3),
+        object_status(1, 4),
         object_general(General::at(3, 5.0, 0.0)),
         object_extended(4, 0, 0.0, 0.2, 0.2),
     ];
