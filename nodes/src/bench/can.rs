@@ -13,6 +13,7 @@
 //! cloud by cloud). Timing that replay on the real clock therefore measures
 //! the driver alone, without the emulator.
 
+use super::encode::encode_timed;
 use super::{median, timed, BenchArgs};
 use crate::transport::PayloadWriter;
 use anyhow::{anyhow, bail, ensure, Context, Result};
@@ -27,7 +28,6 @@ use shroud_core::ingest::can_device::{
 };
 use shroud_core::ingest::dbc::{builtin, CanDatabase};
 use shroud_core::ingest::device::{DeviceState, HostTime};
-use shroud_core::message::SensorPose;
 use shroud_core::metrics::{LatencySummary, Percentiles};
 use shroud_sim::can_device::ars408::CYCLE_PERIOD_S;
 use shroud_sim::can_device::benewake::BenewakeCanModel as EmulatedBenewake;
@@ -340,12 +340,7 @@ fn publish_latencies(device: &CanDevice, calls: &[Call], into: &mut Vec<f64>) ->
             let CanDriverOutput::Cloud(cloud) = output else {
                 continue;
             };
-            let view = cloud
-                .scan
-                .to_view(sequence, SOURCE, SensorPose::default())?
-                .with_pipeline_ns(start.elapsed().as_nanos() as u64);
-            black_box(writer.encode(&view)?);
-            into.push(start.elapsed().as_secs_f64() * 1e6);
+            encode_timed(&cloud.scan, SOURCE, sequence, start, &writer, into)?;
             sequence += 1;
         }
     }

@@ -10,6 +10,7 @@
 //! scan by scan): timing that replay on the real clock measures decoding
 //! alone, without the emulator or the simulated line.
 
+use super::encode::encode_timed;
 use super::{median, timed, BenchArgs};
 use crate::transport::PayloadWriter;
 use anyhow::{bail, ensure, Result};
@@ -22,11 +23,9 @@ use shroud_core::ingest::device::{
 };
 use shroud_core::ingest::rplidar::{RplidarConfig, RplidarDriver, ScanMode};
 use shroud_core::ingest::scip::{ScanCommand, ScipConfig, ScipDriver};
-use shroud_core::message::SensorPose;
 use shroud_core::metrics::{LatencySummary, Percentiles};
 use shroud_sim::device::{emulator, EmulatorOptions, MeshRays, SerialDeviceEmulator};
 use shroud_sim::{Bvh, TableTop, DEFAULT_CYLINDER_SEGMENTS};
-use std::hint::black_box;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -383,12 +382,7 @@ fn publish_latencies(device: &Device, chunks: &[Chunk], into: &mut Vec<f64>) -> 
             };
             assembler.push_scan(scan, &mut clouds);
             for cloud in clouds.drain(..) {
-                let view = cloud
-                    .cloud
-                    .to_view(sequence, SOURCE, SensorPose::default())?
-                    .with_pipeline_ns(start.elapsed().as_nanos() as u64);
-                black_box(writer.encode(&view)?);
-                into.push(start.elapsed().as_secs_f64() * 1e6);
+                encode_timed(&cloud.cloud, SOURCE, sequence, start, &writer, into)?;
                 sequence += 1;
             }
         }

@@ -3,6 +3,7 @@
 
 mod can;
 mod devices;
+mod encode;
 mod latency;
 mod paper000;
 mod timing;
