@@ -1,9 +1,62 @@
-//! The backlog policy between a subscriber and its worker: a bounded queue that
-//! drops the OLDEST item when full and counts every drop, so a fitter that
-//! falls behind works on the freshest cloud instead of building an unbounded
-//! backlog. Plain data; the nodes wrap it with a lock and a condition variable.
+//! Backlog policies between a producer and a slower consumer, each bounded and
+//! counting what it drops: [`DropOldest`], a queue that drops the OLDEST item
+//! when full (a fitter that falls behind works on the freshest cloud instead of
+//! building an unbounded backlog), and [`LatestByKey`], one slot per key where
+//! a new item supersedes the unsent one (a viewer that falls behind skips
+//! frames of a stream, never another stream's). Plain data; the nodes wrap them
+//! with a lock and a wake-up.
 
 use std::collections::VecDeque;
+
+/// One pending item per key: a new item for a key replaces the unsent one
+/// (counted as superseded); items leave in the order their keys first became
+/// pending, so a busy stream cannot starve a quiet one.
+#[derive(Debug, Clone)]
+pub struct LatestByKey<K, T> {
+    pending: VecDeque<(K, T)>,
+    superseded: u64,
+}
+
+impl<K: PartialEq, T> Default for LatestByKey<K, T> {
+    fn default() -> Self {
+        Self {
+            pending: VecDeque::new(),
+            superseded: 0,
+        }
+    }
+}
+
+impl<K: PartialEq, T> LatestByKey<K, T> {
+    /// Sets `key`'s pending item; true if it replaced an unsent one.
+    pub fn put(&mut self, key: K, item: T) -> bool {
+        if let Some(slot) = self.pending.iter_mut().find(|(k, _)| *k == key) {
+            slot.1 = item;
+            self.superseded += 1;
+            true
+        } else {
+            self.pending.push_back((key, item));
+            false
+        }
+    }
+
+    /// The pending item that has waited longest.
+    pub fn take(&mut self) -> Option<(K, T)> {
+        self.pending.pop_front()
+    }
+
+    /// Items replaced before they were taken, since creation.
+    pub fn superseded(&self) -> u64 {
+        self.superseded
+    }
+
+    pub fn len(&self) -> usize {
+        self.pending.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.pending.is_empty()
+    }
+}
 
 /// See the module documentation.
 #[derive(Debug, Clone)]
@@ -57,6 +110,52 @@ impl<T> DropOldest<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn latest_by_key_keeps_one_item_per_key_in_first_pending_order() {
+        let mut slots = LatestByKey::default();
+        assert!(!slots.put("cloud/a", 1));
+        assert!(!slots.put("verdict", 10));
+        assert!(slots.put("cloud/a", 2));
+        assert!(slots.put("cloud/a", 3));
+        assert_eq!(slots.len(), 2);
+        assert_eq!(slots.superseded(), 2);
+        assert_eq!(slots.take(), Some(("cloud/a", 3)));
+        assert_eq!(slots.take(), Some(("verdict", 10)));
+        assert_eq!(slots.take(), None);
+        assert!(slots.is_empty());
+    }
+
+    /// Whatever the puts and takes: at most one item per key, every put
+    /// either taken (the newest of its key), pending, or counted superseded.
+    #[test]
+    fn latest_by_key_accounts_for_every_item() {
+        let mut x = 0x2545_F491_u32;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        };
+        let mut slots = LatestByKey::default();
+        let (mut put, mut taken) = (0u64, 0u64);
+        let mut newest = [0u32; 4];
+        for step in 0..5000u32 {
+            if next() % 3 == 0 {
+                if let Some((key, value)) = slots.take() {
+                    assert_eq!(value, newest[key], "a taken item is its key's newest");
+                    taken += 1;
+                }
+            } else {
+                let key = (next() % 4) as usize;
+                newest[key] = step;
+                slots.put(key, step);
+                put += 1;
+            }
+            assert!(slots.len() <= 4);
+            assert_eq!(put, taken + slots.len() as u64 + slots.superseded());
+        }
+    }
 
     #[test]
     fn drops_the_oldest_and_counts() {

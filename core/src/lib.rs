@@ -6,6 +6,7 @@
 pub mod backlog;
 pub mod blend;
 pub mod cloud;
+pub mod dashboard;
 pub mod format;
 pub mod guard;
 pub mod ingest;
@@ -15,6 +16,7 @@ pub mod mesh;
 pub mod message;
 pub mod metrics;
 pub mod query;
+pub mod scene;
 pub mod smooth;
 pub mod spline;
 pub mod surrogate;

@@ -42,7 +42,9 @@ pub use polygon2d::{segment_distance, signed_area, Polygon2};
 pub use prepared::{Child, Prepared, MIN_CLOUD_POINTS};
 pub use quality::{overlap_rate, seam_gap, seam_points, Gap};
 pub use regions::{blend_regions, BlendRegions, ParentClass, RegionParams};
-pub use session::{supersede, BlendCommand, BlendSession, DropState, ModelSources};
+pub use session::{
+    supersede, supersede_indices, BlendCommand, BlendSession, DropState, ModelSources,
+};
 pub use tetra::{sample_zero_set, SampledSurface};
 pub use transform::{drop_transform, LocalAdjust, RigidTransform};
 pub use write_ply::write_ply_with_normals;

@@ -114,6 +114,15 @@ impl BlendSession {
         Ok(result.report)
     }
 
+    /// Holds `child` from now on and gives back the one it held. A child that
+    /// was dropped and not committed is taken away (the model is the parent
+    /// again); the local adjustment is kept for the next drop.
+    pub fn replace_child(&mut self, child: Child) -> Child {
+        self.drop = None;
+        self.blended = None;
+        std::mem::replace(&mut self.child, child)
+    }
+
     /// The current model: the blend if a child is dropped, else the parent.
     /// Sources say where each point comes from.
     pub fn model(&self) -> (&[DVec3], ModelSources<'_>) {
@@ -140,20 +149,27 @@ impl BlendSession {
 /// may take; the child ends where the last one put it). Clear and commit are
 /// never skipped.
 pub fn supersede(pending: &[BlendCommand]) -> Vec<BlendCommand> {
+    supersede_indices(pending)
+        .into_iter()
+        .map(|i| pending[i])
+        .collect()
+}
+
+/// The positions in `pending` of the commands [`supersede`] keeps, for a
+/// caller that carries more with each command (which part a drop pastes).
+pub fn supersede_indices(pending: &[BlendCommand]) -> Vec<usize> {
     let is_barrier = |c: &BlendCommand| matches!(c, BlendCommand::Clear | BlendCommand::Commit);
     let same_kind =
         |a: &BlendCommand, b: &BlendCommand| std::mem::discriminant(a) == std::mem::discriminant(b);
-    pending
-        .iter()
-        .enumerate()
-        .filter(|(i, c)| {
+    (0..pending.len())
+        .filter(|&i| {
+            let c = &pending[i];
             is_barrier(c)
                 || !pending[i + 1..]
                     .iter()
                     .take_while(|later| !is_barrier(later))
                     .any(|later| same_kind(c, later))
         })
-        .map(|(_, c)| *c)
         .collect()
 }
 

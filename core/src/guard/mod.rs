@@ -21,6 +21,8 @@
 //!   motion allowance, unobserved space ([`GuardPolicy`]).
 //! - [`Deadman`]: a verdict consumer's rule for when it may move, and
 //!   [`ResumeAfter`]: its wait-and-resume after a halt.
+//! - [`VerdictWatch`]: what a display shows: the latest verdict while fresh,
+//!   `no-verdict` once the guard is silent.
 //!
 //! The guard answers for the surrogate's domain only: points outside it (or in
 //! trimmed-away triangles, which hold no points) are not represented.
@@ -44,6 +46,7 @@ mod schema;
 mod shape;
 mod trajectory;
 mod urdf;
+mod verdict_watch;
 mod xml;
 
 #[cfg(test)]
@@ -65,3 +68,4 @@ pub use resume::ResumeAfter;
 pub use schema::ArmFile;
 pub use shape::{Capsule, Shape, Sphere, WorldShape};
 pub use trajectory::{Trajectory, Waypoint};
+pub use verdict_watch::{ShownVerdict, VerdictWatch};

@@ -184,9 +184,13 @@ impl LaunchFile {
     }
 }
 
+/// The launcher's own name in the namespace (its status message); no node
+/// may take it.
+pub const LAUNCHER_NAME: &str = "launcher";
+
 /// The node programs `run` may name: `shroud node <kind>` (nodes/ checks that
 /// this list is exactly its subcommands).
-pub const NODE_KINDS: [&str; 9] = [
+pub const NODE_KINDS: [&str; 10] = [
     "scanner",
     "fit",
     "guard",
@@ -196,6 +200,7 @@ pub const NODE_KINDS: [&str; 9] = [
     "blend",
     "smooth",
     "device-sim",
+    "dashboard",
 ];
 
 /// The options the launcher passes every child itself; `args` may not repeat
@@ -216,6 +221,11 @@ fn check_node(node: &NodeSpec) -> Result<(), LaunchError> {
         reason,
     };
     check_name("name", &node.name).map_err(|e| fail(e.to_string()))?;
+    if node.name == LAUNCHER_NAME {
+        return Err(fail(format!(
+            "the name {LAUNCHER_NAME:?} is the launcher's own (its status message)"
+        )));
+    }
     check_name("run", &node.run).map_err(|e| fail(e.to_string()))?;
     if !NODE_KINDS.contains(&node.run.as_str()) {
         return Err(fail(format!(
@@ -297,6 +307,7 @@ env = { RUST_LOG = "debug" }
                 "backoff_ms",
             ),
             ("[[node]]\nname=\"x\"\nrun=\"fitter\"", "not a node kind"),
+            ("[[node]]\nname=\"launcher\"\nrun=\"fit\"", "launcher's own"),
             (
                 "[[node]]\nname=\"x\"\nrun=\"fit\"\nrestart=\"sometimes\"",
                 "TOML",

@@ -10,5 +10,6 @@ mod file;
 pub use backoff::{Backoff, RestartDecision};
 pub use error::LaunchError;
 pub use file::{
-    LaunchFile, NodeSpec, RestartPolicy, SummarySpec, ZenohSpec, LAUNCHER_FLAGS, NODE_KINDS,
+    LaunchFile, NodeSpec, RestartPolicy, SummarySpec, ZenohSpec, LAUNCHER_FLAGS, LAUNCHER_NAME,
+    NODE_KINDS,
 };

@@ -4,13 +4,14 @@
 
 use super::blob::{decode, encode};
 use super::error::MessageError;
-use super::{check_finite, check_version, SCHEMA_VERSION};
+use super::{check_finite, check_name, check_version, SCHEMA_VERSION};
 use crate::blend::{BlendCommand, LocalAdjust};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-/// One command. `command` is `drop` (needs `at`; `normal` optional), `adjust`
-/// (`lift` in cloud units, `spin` and `tilt` in radians), `clear` or `commit`.
+/// One command. `command` is `drop` (needs `at`; `normal` and `part`
+/// optional), `adjust` (`lift` in cloud units, `spin` and `tilt` in radians),
+/// `clear` or `commit`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BlendCommandMessage {
     pub version: u16,
@@ -21,6 +22,10 @@ pub struct BlendCommandMessage {
     pub at: Option<[f64; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal: Option<[f64; 3]>,
+    /// Which of the blend node's parts a drop pastes (a name from its
+    /// `blend.parts` status label); absent: the one it holds now.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub part: Option<String>,
     #[serde(default)]
     pub lift: f64,
     #[serde(default)]
@@ -38,6 +43,7 @@ impl BlendCommandMessage {
             command: String::new(),
             at: None,
             normal: None,
+            part: None,
             lift: 0.0,
             spin: 0.0,
             tilt: [0.0; 2],
@@ -63,13 +69,32 @@ impl BlendCommandMessage {
         encode(self)
     }
 
+    /// The same drop, of the part named `part`.
+    pub fn with_part(mut self, part: &str) -> Self {
+        self.part = Some(part.to_owned());
+        self
+    }
+
     /// Decodes and validates: version, a known command with its fields, finite
-    /// numbers.
+    /// numbers, a part name only on a drop.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, MessageError> {
         let msg: Self = decode(bytes)?;
         check_version(msg.version)?;
         msg.command()?;
+        msg.check_part()?;
         Ok(msg)
+    }
+
+    /// A part is named with a drop only, and by a valid name.
+    pub fn check_part(&self) -> Result<(), MessageError> {
+        match &self.part {
+            None => Ok(()),
+            Some(_) if self.command != "drop" => Err(MessageError::Invalid {
+                field: "part",
+                reason: format!("only a drop names a part, not {:?}", self.command),
+            }),
+            Some(name) => check_name("part", name),
+        }
     }
 
     /// The command this message asks for.
@@ -164,6 +189,21 @@ mod tests {
                 ..
             })
         ));
+        let named = BlendCommandMessage::new(1, 1, &drop).with_part("half-cylinder");
+        let back = BlendCommandMessage::from_bytes(&named.to_bytes().unwrap()).unwrap();
+        assert_eq!(back.part.as_deref(), Some("half-cylinder"));
+        for (command, part) in [
+            (&drop, "a/b"),
+            (&drop, ""),
+            (&BlendCommand::Clear, "hemisphere"),
+        ] {
+            let mut msg = BlendCommandMessage::new(1, 1, command);
+            msg.part = Some(part.into());
+            assert!(matches!(
+                BlendCommandMessage::from_bytes(&msg.to_bytes().unwrap()),
+                Err(MessageError::Invalid { field: "part", .. })
+            ));
+        }
         let mut msg = BlendCommandMessage::new(1, 1, &BlendCommand::Clear);
         msg.spin = f64::INFINITY;
         assert!(BlendCommandMessage::from_bytes(&msg.to_bytes().unwrap()).is_err());

@@ -166,36 +166,37 @@ impl CollisionMessage {
     }
 }
 
+/// A collision message with this verdict, for tests of consumers.
+#[cfg(test)]
+pub(crate) fn sample_collision(verdict: GuardVerdict) -> CollisionMessage {
+    CollisionMessage {
+        version: super::SCHEMA_VERSION,
+        joints_stamp_ns: 1,
+        joints_sequence: 2,
+        arm: "arm".into(),
+        surrogate_stamp_ns: 3,
+        surrogate_sequence: 4,
+        surrogate_age_ns: 5,
+        views: 1,
+        verdict,
+        stop: verdict != GuardVerdict::Clear,
+        reason: String::new(),
+        stop_distance: 0.05,
+        min_clearance: 0.2,
+        closest_link: "wrist".into(),
+        unobserved: false,
+        links: vec![LinkClearance {
+            link: "wrist".into(),
+            clearance: 0.2,
+            unobserved: false,
+        }],
+        check_ns: 900,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::message::SCHEMA_VERSION;
-
-    fn sample(verdict: GuardVerdict) -> CollisionMessage {
-        CollisionMessage {
-            version: SCHEMA_VERSION,
-            joints_stamp_ns: 1,
-            joints_sequence: 2,
-            arm: "arm".into(),
-            surrogate_stamp_ns: 3,
-            surrogate_sequence: 4,
-            surrogate_age_ns: 5,
-            views: 1,
-            verdict,
-            stop: verdict != GuardVerdict::Clear,
-            reason: String::new(),
-            stop_distance: 0.05,
-            min_clearance: 0.2,
-            closest_link: "wrist".into(),
-            unobserved: false,
-            links: vec![LinkClearance {
-                link: "wrist".into(),
-                clearance: 0.2,
-                unobserved: false,
-            }],
-            check_ns: 900,
-        }
-    }
 
     #[test]
     fn round_trips_and_checks_consistency() {
@@ -206,19 +207,19 @@ mod tests {
             GuardVerdict::Stale,
             GuardVerdict::Unobserved,
         ] {
-            let msg = sample(v);
+            let msg = sample_collision(v);
             assert_eq!(
                 CollisionMessage::from_bytes(&msg.to_bytes().unwrap()).unwrap(),
                 msg
             );
         }
-        let mut lying = sample(GuardVerdict::Stop);
+        let mut lying = sample_collision(GuardVerdict::Stop);
         lying.stop = false;
         assert!(matches!(
             CollisionMessage::from_bytes(&lying.to_bytes().unwrap()),
             Err(MessageError::Invalid { field: "stop", .. })
         ));
-        let consumer_state = sample(GuardVerdict::NoVerdict);
+        let consumer_state = sample_collision(GuardVerdict::NoVerdict);
         assert!(matches!(
             CollisionMessage::from_bytes(&consumer_state.to_bytes().unwrap()),
             Err(MessageError::Invalid {

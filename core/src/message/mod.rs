@@ -26,11 +26,15 @@ pub use channels::{
 };
 pub use cloud::{CloudMessage, SensorPose};
 pub use cloud_view::CloudView;
+#[cfg(test)]
+pub(crate) use collision::sample_collision;
 pub use collision::{CollisionMessage, GuardVerdict, LinkClearance};
 pub use describe::describe;
 pub use error::MessageError;
 pub use joints::JointStateMessage;
 pub use skew::{check_stamp_skew, max_skew_ns_from_secs, StampSkew, DEFAULT_MAX_SKEW_NS};
+#[cfg(test)]
+pub(crate) use smooth::sample_smooth_message;
 pub use smooth::{SmoothFitReport, SmoothPatchesMessage};
 pub use status::NodeStatusMessage;
 pub use surrogate::{SurfaceMessage, SurrogateMessage};

@@ -147,37 +147,43 @@ impl SmoothPatchesMessage {
     }
 }
 
+/// A small graph fit over the triangle test mesh, for tests of consumers.
+#[cfg(test)]
+pub(crate) fn sample_smooth_message() -> SmoothPatchesMessage {
+    use crate::mesh::{triangle_mesh, G1Domain};
+    use crate::smooth::{Sample, SmoothFitter};
+    let mesh = triangle_mesh();
+    let fitter = SmoothFitter::new(G1Domain::new(mesh.clone()).unwrap()).unwrap();
+    let samples: Vec<Sample> = (0..300)
+        .map(|k| Sample {
+            face: k % 3,
+            u: (k as f64 * 0.618).fract(),
+            v: (k as f64 * 0.377).fract(),
+        })
+        .collect();
+    let values: Vec<f64> = samples.iter().map(|s| s.u * s.v).collect();
+    let surface = fitter.fit(&samples, &values, 1, 1e-6).unwrap();
+    let report = SmoothFitReport {
+        source_stamp_ns: 5,
+        source_sequence: 6,
+        source: "sim",
+        kind: "graph",
+        functions: fitter.basis.len(),
+        lambda: 1e-6,
+        points: 300,
+        outside: 2,
+        errors: surface.errors(&samples, &values),
+        fit_ns: 7,
+    };
+    SmoothPatchesMessage::new(&mesh, &surface, &report)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{triangle_mesh, G1Domain};
-    use crate::smooth::{Sample, SmoothFitter};
 
     fn message() -> SmoothPatchesMessage {
-        let mesh = triangle_mesh();
-        let fitter = SmoothFitter::new(G1Domain::new(mesh.clone()).unwrap()).unwrap();
-        let samples: Vec<Sample> = (0..300)
-            .map(|k| Sample {
-                face: k % 3,
-                u: (k as f64 * 0.618).fract(),
-                v: (k as f64 * 0.377).fract(),
-            })
-            .collect();
-        let values: Vec<f64> = samples.iter().map(|s| s.u * s.v).collect();
-        let surface = fitter.fit(&samples, &values, 1, 1e-6).unwrap();
-        let report = SmoothFitReport {
-            source_stamp_ns: 5,
-            source_sequence: 6,
-            source: "sim",
-            kind: "graph",
-            functions: fitter.basis.len(),
-            lambda: 1e-6,
-            points: 300,
-            outside: 2,
-            errors: surface.errors(&samples, &values),
-            fit_ns: 7,
-        };
-        SmoothPatchesMessage::new(&mesh, &surface, &report)
+        sample_smooth_message()
     }
 
     #[test]

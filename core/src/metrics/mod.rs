@@ -3,11 +3,13 @@
 //! takes, through a counting allocator that benchmarks install.
 
 mod allocation;
+mod node_health;
 mod percentiles;
 mod rate;
 mod summary;
 
 pub use allocation::{is_counting, live_bytes, peak_bytes, reset_peak, CountingAllocator};
+pub use node_health::{NodeHealth, NodeRow, NodeState};
 pub use percentiles::{LatencySummary, Percentiles};
 pub use rate::RateMeter;
 pub use summary::GraphSummary;

@@ -8,6 +8,7 @@ mod emulator;
 mod mount;
 mod smooth;
 mod surrogate;
+mod web_listen;
 
 pub use blend::{points3, BlendShapeArgs};
 pub use can_device::{
@@ -18,3 +19,4 @@ pub use emulator::EmulatorArgs;
 pub use mount::{CloudArgs, MountArgs, MountAxis};
 pub use smooth::{DomainKind, SmoothDomainArgs};
 pub use surrogate::SurrogateShapeArgs;
+pub use web_listen::take_web_listen;

@@ -8,6 +8,7 @@
 mod child;
 mod monitor;
 mod output;
+mod roster;
 mod supervise;
 
 use anyhow::{Context, Result};

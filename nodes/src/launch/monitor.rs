@@ -7,6 +7,7 @@ use shroud_core::message::{
     CollisionMessage, NodeStatusMessage, SurrogateMessage, TopicKind, Topics,
 };
 use shroud_core::metrics::GraphSummary;
+use std::collections::BTreeSet;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
@@ -27,6 +28,7 @@ pub async fn run(session: zenoh::Session, topics: Result<Topics>, period: f64) {
             return;
         };
         let sink = summary.clone();
+        let announced = Mutex::new(BTreeSet::new());
         let sub = session
             .declare_subscriber(&key)
             .callback(move |sample| {
@@ -37,6 +39,10 @@ pub async fn run(session: zenoh::Session, topics: Result<Topics>, period: f64) {
                 match kind {
                     TopicKind::Status => {
                         if let Ok(m) = NodeStatusMessage::from_bytes(&bytes) {
+                            announce_url(
+                                &m,
+                                &mut announced.lock().unwrap_or_else(|p| p.into_inner()),
+                            );
                             s.on_status(m);
                         }
                     }
@@ -68,5 +74,18 @@ pub async fn run(session: zenoh::Session, topics: Result<Topics>, period: f64) {
         tick.tick().await;
         let line = lock(&summary).line(start.elapsed().as_secs_f64());
         output::out(line);
+    }
+}
+
+/// Prints a node's page once (`dashboard.url` in its status labels), so the
+/// address is the first thing a user of the demo reads.
+fn announce_url(status: &NodeStatusMessage, announced: &mut BTreeSet<String>) {
+    if let Some(url) = status.labels.get("dashboard.url") {
+        if announced.insert(format!("{}={url}", status.node)) {
+            output::out(format!(
+                "[launch] {}: open {url} in a browser (the live dashboard)",
+                status.node
+            ));
+        }
     }
 }

@@ -5,6 +5,7 @@
 use super::child::{self, Wiring};
 use super::monitor;
 use super::output;
+use super::roster::{self, Roster};
 use crate::transport::{shutdown_signal, OnOff, ZenohArgs};
 use anyhow::Result;
 use shroud_core::launch::{Backoff, LaunchFile, NodeSpec, RestartDecision};
@@ -65,6 +66,7 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
     };
     let grace = Duration::from_secs_f64(file.shutdown_grace_s);
     let (stop_tx, stop_rx) = watch::channel(false);
+    let roster = Roster::default();
     let mut nodes = JoinSet::new();
     for spec in &file.nodes {
         nodes.spawn(supervise(
@@ -72,8 +74,21 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
             wiring.clone(),
             stop_rx.clone(),
             grace,
+            roster.clone(),
         ));
     }
+    let roster_status = match hub.topics() {
+        Ok(topics) => Some(tokio::spawn(roster::publish(
+            session.clone(),
+            topics,
+            roster.clone(),
+            Duration::from_secs(1),
+        ))),
+        Err(e) => {
+            output::err(format!("[launch] no launcher status: {e:#}"));
+            None
+        }
+    };
     let monitor = file.summary.enabled.then(|| {
         tokio::spawn(monitor::run(
             session.clone(),
@@ -132,6 +147,9 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
     if let Some(m) = monitor {
         m.abort();
     }
+    if let Some(r) = roster_status {
+        r.abort();
+    }
     let _ = session.close().await;
     anyhow::ensure!(failed.is_empty(), "nodes failed: {}", failed.join(", "));
     output::out("[launch] all nodes stopped cleanly");
@@ -157,6 +175,7 @@ async fn supervise(
     wiring: Wiring,
     mut stop: watch::Receiver<bool>,
     grace: Duration,
+    roster: Roster,
 ) -> Outcome {
     let mut backoff = Backoff::new(&spec);
     let outcome = |kind| Outcome {
@@ -171,15 +190,14 @@ async fn supervise(
         let started = Instant::now();
         let success = match child::spawn(&spec, &wiring) {
             Ok(mut process) => {
-                output::out(format!(
-                    "[launch] started {} (pid {})",
-                    spec.name,
-                    process.id().unwrap_or(0)
-                ));
+                let pid = process.id().unwrap_or(0);
+                output::out(format!("[launch] started {} (pid {pid})", spec.name));
+                roster.started(&spec.name, pid);
                 tokio::select! {
                     status = process.wait() => exited(&spec.name, status),
                     _ = stop.changed() => {
                         child::stop(&mut process, &spec.name, grace).await;
+                        roster.set_state(&spec.name, "stopped");
                         return outcome(OutcomeKind::Stopped);
                     }
                 }
@@ -191,6 +209,7 @@ async fn supervise(
         };
         match backoff.on_exit(success, started.elapsed()) {
             RestartDecision::RestartAfter(delay) => {
+                roster.set_state(&spec.name, "restarting");
                 output::out(format!(
                     "[launch] restarting {} in {:.2} s",
                     spec.name,
@@ -201,8 +220,12 @@ async fn supervise(
                     _ = stop.changed() => return outcome(OutcomeKind::Stopped),
                 }
             }
-            RestartDecision::Stop => return outcome(OutcomeKind::Finished { success }),
+            RestartDecision::Stop => {
+                roster.set_state(&spec.name, "finished");
+                return outcome(OutcomeKind::Finished { success });
+            }
             RestartDecision::GiveUp { failures } => {
+                roster.set_state(&spec.name, "gave-up");
                 output::err(format!(
                     "[launch] giving up on {} after {failures} failures in a row",
                     spec.name

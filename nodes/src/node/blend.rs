@@ -1,8 +1,11 @@
 //! The `blend` node: interactive scene composition (paper 001). It holds a
-//! parent cloud (a file or a snapshot of a cloud stream) and a child part,
-//! follows drop / adjust / clear / commit commands from `shroud/<ns>/blend/<name>`,
-//! and republishes the blended model as a cloud whose intensity is each point's
-//! source (0 parent, 1 child, 2 transition).
+//! parent cloud (a file or a snapshot of a cloud stream) and a palette of
+//! parts (files and the simulator's parts), follows drop / adjust / clear /
+//! commit commands from `shroud/<ns>/blend/<name>` (a drop may name the part
+//! to paste), and republishes the blended model as a cloud whose intensity is
+//! each point's source (0 parent, 1 child, 2 transition). Its status labels
+//! announce the palette (`blend.stream`, `blend.output`, `blend.parts`) for
+//! dashboards.
 
 use super::runtime::{run_node, NodeCommon, NodeContext};
 use crate::args::{points3, BlendShapeArgs};
@@ -11,7 +14,7 @@ use crate::transport::{unix_ns, Mailbox, PayloadWriter};
 use anyhow::{Context, Result};
 use clap::Args;
 use shroud_core::blend::{
-    supersede, BlendCommand, BlendParams, BlendSession, Child, PolygonOfInterest, Prepared,
+    supersede_indices, BlendCommand, BlendParams, BlendSession, Child, PolygonOfInterest, Prepared,
 };
 use shroud_core::message::{BlendCommandMessage, CloudMessage, CloudView, SensorPose, TopicKind};
 use std::path::PathBuf;
@@ -34,16 +37,14 @@ pub struct BlendNodeArgs {
     /// Or: the first cloud of this stream (`shroud/<ns>/cloud/<name>`) is the parent.
     #[arg(long)]
     pub parent_stream: Option<String>,
-    /// The child cloud, with an open boundary (its polygon of interest).
-    #[arg(
-        long,
-        required_unless_present = "child_part",
-        conflicts_with = "child_part"
-    )]
-    pub child: Option<PathBuf>,
-    /// Or: a simulated part: hemisphere or half-cylinder.
-    #[arg(long)]
-    pub child_part: Option<String>,
+    /// A part from a cloud file, with an open boundary (its polygon of
+    /// interest); named by its file name in the palette. Repeatable.
+    #[arg(long = "child", value_name = "FILE")]
+    pub children: Vec<PathBuf>,
+    /// A simulated part: hemisphere or half-cylinder. Repeatable. The palette
+    /// is the files, then these; the first is held at the start.
+    #[arg(long = "child-part", value_name = "NAME")]
+    pub child_parts: Vec<String>,
     /// Size of the simulated part (its radius), cloud units.
     #[arg(long, default_value_t = 0.3)]
     pub part_size: f64,
@@ -51,7 +52,7 @@ pub struct BlendNodeArgs {
     #[arg(long, default_value_t = 3_000)]
     pub part_points: usize,
     /// Polygon of interest in the child's coordinates: "x,y,z;x,y,z;..."
-    /// (default: the child's longest open boundary loop).
+    /// (default: the child's longest open boundary loop). Only with a single part.
     #[arg(long, allow_hyphen_values = true)]
     pub polygon: Option<String>,
     /// Command stream (`shroud/<ns>/blend/<name>`) and, unless --output is given,
@@ -82,11 +83,15 @@ pub fn run(args: BlendNodeArgs) -> Result<()> {
 fn serve(ctx: Arc<NodeContext>, args: BlendNodeArgs, params: BlendParams) -> Result<()> {
     let commands = ctx.key(TopicKind::Blend, &args.stream)?;
     let output = args.output.as_deref().unwrap_or(&args.stream);
-    let child = child(&args, &params)?;
+    let mut palette = Palette::new(&args, &params)?;
+    let m = &ctx.metrics;
+    m.set_label("blend.stream".into(), args.stream.clone());
+    m.set_label("blend.output".into(), output.to_string());
+    m.set_label("blend.parts".into(), palette.names().join(","));
     let Some((parent, parent_age)) = parent(&ctx, &args, &params)? else {
         return Ok(()); // stopped while waiting for the parent stream
     };
-    let mut session = BlendSession::new(parent, child, params);
+    let mut session = BlendSession::new(parent, palette.take_first(), params);
     // Every command counts (a commit must not be lost), so the queue is deep;
     // the worker skips the drops a later drop supersedes instead.
     let mailbox = Arc::new(Mailbox::new(1024));
@@ -118,7 +123,7 @@ fn serve(ctx: Arc<NodeContext>, args: BlendNodeArgs, params: BlendParams) -> Res
         while let Some(more) = mailbox.pop(Duration::ZERO) {
             batch.push(more);
         }
-        if apply_batch(&ctx, &mut session, &batch) {
+        if apply_batch(&ctx, &mut session, &mut palette, &batch) {
             out.publish(&session);
             last_publish = Instant::now();
         }
@@ -128,12 +133,19 @@ fn serve(ctx: Arc<NodeContext>, args: BlendNodeArgs, params: BlendParams) -> Res
 }
 
 /// Decodes and applies a batch of commands; true when the model changed.
-fn apply_batch(ctx: &NodeContext, session: &mut BlendSession, batch: &[(String, ZBytes)]) -> bool {
-    let decoded: Vec<BlendCommand> = batch
+fn apply_batch(
+    ctx: &NodeContext,
+    session: &mut BlendSession,
+    palette: &mut Palette,
+    batch: &[(String, ZBytes)],
+) -> bool {
+    let decoded: Vec<(BlendCommand, Option<String>)> = batch
         .iter()
         .filter_map(|(key, payload)| {
             ctx.metrics.add("received", 1);
-            match BlendCommandMessage::from_bytes(&payload.to_bytes()).and_then(|m| m.command()) {
+            let decoded = BlendCommandMessage::from_bytes(&payload.to_bytes())
+                .and_then(|m| Ok((m.command()?, m.part)));
+            match decoded {
                 Ok(c) => Some(c),
                 Err(e) => {
                     ctx.drop_malformed(key, &e);
@@ -142,11 +154,19 @@ fn apply_batch(ctx: &NodeContext, session: &mut BlendSession, batch: &[(String, 
             }
         })
         .collect();
-    let todo = supersede(&decoded);
+    let commands: Vec<BlendCommand> = decoded.iter().map(|(c, _)| *c).collect();
+    let todo = supersede_indices(&commands);
     ctx.metrics
         .add("superseded", (decoded.len() - todo.len()) as u64);
     let mut changed = false;
-    for command in &todo {
+    for (command, part) in todo.into_iter().map(|i| &decoded[i]) {
+        if let Some(name) = part {
+            if let Err(e) = palette.hold(session, name) {
+                ctx.metrics.add("blend_errors", 1);
+                tracing::warn!("drop refused: {e:#}");
+                continue;
+            }
+        }
         let start = Instant::now();
         match session.apply(command) {
             Ok(report) => {
@@ -168,6 +188,115 @@ fn apply_batch(ctx: &NodeContext, session: &mut BlendSession, batch: &[(String, 
         }
     }
     changed
+}
+
+/// The parts a drop may paste, prepared once; the session holds one of them.
+struct Palette {
+    names: Vec<String>,
+    /// `None` at the held part's place (the session has it).
+    parts: Vec<Option<Child>>,
+    held: usize,
+}
+
+impl Palette {
+    fn new(args: &BlendNodeArgs, params: &BlendParams) -> Result<Self> {
+        let count = args.children.len() + args.child_parts.len();
+        anyhow::ensure!(
+            count > 0,
+            "give at least one --child FILE or --child-part NAME"
+        );
+        anyhow::ensure!(
+            args.polygon.is_none() || count == 1,
+            "--polygon names the polygon of one part: give a single --child or --child-part with it"
+        );
+        let polygon = match &args.polygon {
+            Some(text) => Some(PolygonOfInterest::from_polyline(points3(text, "polygon")?)?),
+            None => None,
+        };
+        let mut palette = Self {
+            names: Vec::new(),
+            parts: Vec::new(),
+            held: 0,
+        };
+        for path in &args.children {
+            let points = files::read_cloud(path)?;
+            let name = part_name(path);
+            let child = prepare_child(&points, polygon.clone(), params)
+                .with_context(|| format!("part {}", path.display()))?;
+            palette.add(name, child)?;
+        }
+        for name in &args.child_parts {
+            let points = shroud_sim::parts::part_by_name(name, args.part_size, args.part_points)?;
+            let child = prepare_child(&points, polygon.clone(), params)
+                .with_context(|| format!("part {name}"))?;
+            palette.add(name.clone(), child)?;
+        }
+        Ok(palette)
+    }
+
+    fn add(&mut self, name: String, child: Child) -> Result<()> {
+        anyhow::ensure!(!self.names.contains(&name), "two parts are called {name:?}");
+        self.names.push(name);
+        self.parts.push(Some(child));
+        Ok(())
+    }
+
+    fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// The first part, for the session to hold.
+    fn take_first(&mut self) -> Child {
+        self.held = 0;
+        self.parts[0].take().expect("a palette has a first part")
+    }
+
+    /// Makes the session hold part `name` (it keeps it if it holds it).
+    fn hold(&mut self, session: &mut BlendSession, name: &str) -> Result<()> {
+        let Some(index) = self.names.iter().position(|n| n == name) else {
+            anyhow::bail!("no part {name:?} (the parts are {})", self.names.join(", "));
+        };
+        if index != self.held {
+            let child = self.parts[index].take().expect("only the held part is out");
+            self.parts[self.held] = Some(session.replace_child(child));
+            self.held = index;
+        }
+        Ok(())
+    }
+}
+
+/// A part's name in the palette: its file name, with characters a name may
+/// not hold replaced by `_`.
+fn part_name(path: &std::path::Path) -> String {
+    let base = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let clean: String = base
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "-_.".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .take(64)
+        .collect();
+    if clean.is_empty() {
+        "part".into()
+    } else {
+        clean
+    }
+}
+
+fn prepare_child(
+    points: &[[f32; 3]],
+    polygon: Option<PolygonOfInterest>,
+    params: &BlendParams,
+) -> Result<Child> {
+    let cloud = Prepared::new(points, "child", params.normal_k)?;
+    Ok(Child::new(cloud, polygon, &params.boundary)?)
 }
 
 /// Where the blended model goes.
@@ -232,22 +361,6 @@ impl Output<'_> {
         self.ctx.metrics.set("points", points.len() as f64);
         self.sequence += 1;
     }
-}
-
-fn child(args: &BlendNodeArgs, params: &BlendParams) -> Result<Child> {
-    let points = match (&args.child, &args.child_part) {
-        (Some(path), _) => files::read_cloud(path)?,
-        (None, Some(name)) => {
-            shroud_sim::parts::part_by_name(name, args.part_size, args.part_points)?
-        }
-        (None, None) => anyhow::bail!("give --child FILE or --child-part NAME"),
-    };
-    let cloud = Prepared::new(&points, "child", params.normal_k)?;
-    let polygon = match &args.polygon {
-        Some(text) => Some(PolygonOfInterest::from_polyline(points3(text, "polygon")?)?),
-        None => None,
-    };
-    Ok(Child::new(cloud, polygon, &params.boundary)?)
 }
 
 /// The parent and its age: read from its file (as old as the node's copy of

@@ -5,6 +5,7 @@ mod arm;
 mod arm_file;
 mod blend;
 mod can;
+mod dashboard;
 mod device;
 mod device_sim;
 mod device_status;
@@ -21,6 +22,7 @@ mod smooth;
 pub use arm::ArmArgs;
 pub use blend::BlendNodeArgs;
 pub use can::CanNodeArgs;
+pub use dashboard::DashboardArgs;
 pub use device_sim::DeviceSimArgs;
 pub use fit::FitNodeArgs;
 pub use guard::GuardArgs;
@@ -54,6 +56,8 @@ pub enum NodeCommand {
     Blend(BlendNodeArgs),
     /// Fit G1 smooth spline patches to a cloud stream over a domain (paper 004).
     Smooth(SmoothNodeArgs),
+    /// The live monitoring page: serves it over HTTP and streams the graph to browsers.
+    Dashboard(DashboardArgs),
     /// List the nodes alive in a namespace with their status.
     List(NodeListArgs),
 }
@@ -69,6 +73,7 @@ pub fn run(command: NodeCommand) -> Result<()> {
         NodeCommand::DeviceSim(args) => device_sim::run_device_sim(args),
         NodeCommand::Blend(args) => blend::run(args),
         NodeCommand::Smooth(args) => smooth::run(args),
+        NodeCommand::Dashboard(args) => dashboard::run(args),
         NodeCommand::List(args) => list::run(args),
     }
 }

@@ -1,0 +1,19 @@
+//! What viewers draw of the graph's messages (the web dashboard, the Foxglove
+//! bridge, recordings): clouds thinned to a point budget, surrogates as their
+//! trimmed triangle meshes, smooth fits tessellated, the arm posed at its joint
+//! state, and each link's clearance band. Pure functions of decoded messages;
+//! every viewer encodes the results in its own format.
+
+mod arm_pose;
+mod clearance_band;
+mod decimate;
+mod error;
+mod smooth_mesh;
+mod surface_mesh;
+
+pub use arm_pose::{pose_arm, PosedArm, PosedLink};
+pub use clearance_band::ClearanceBand;
+pub use decimate::Decimation;
+pub use error::SceneError;
+pub use smooth_mesh::smooth_mesh;
+pub use surface_mesh::{surrogate_meshes, SurfaceMesh};

@@ -1,0 +1,106 @@
+//! What the launcher knows of its children (starts, restarts, pid, state),
+//! published as its own status message (`status/launcher`, kind `launch`), so
+//! that `shroud node list`, dashboards and tests see restart counts.
+
+use crate::transport::unix_ns;
+use shroud_core::message::{NodeStatusMessage, TopicKind, Topics};
+use std::collections::BTreeMap;
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::time::{Duration, Instant};
+use zenoh::Wait;
+
+/// The launcher's status name; launch files may not use it for a node.
+pub use shroud_core::launch::LAUNCHER_NAME;
+
+#[derive(Debug, Clone, Default)]
+struct Child {
+    starts: u64,
+    pid: u32,
+    state: &'static str,
+}
+
+/// Every child's record, shared by the supervising tasks.
+#[derive(Debug, Clone, Default)]
+pub struct Roster(Arc<Mutex<BTreeMap<String, Child>>>);
+
+impl Roster {
+    fn lock(&self) -> MutexGuard<'_, BTreeMap<String, Child>> {
+        self.0.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// Node `name` was started with `pid`.
+    pub fn started(&self, name: &str, pid: u32) {
+        let mut children = self.lock();
+        let child = children.entry(name.to_string()).or_default();
+        child.starts += 1;
+        child.pid = pid;
+        child.state = "running";
+    }
+
+    /// Node `name` is in `state` (`restarting`, `stopped`, `finished`, `gave-up`).
+    pub fn set_state(&self, name: &str, state: &'static str) {
+        self.lock().entry(name.to_string()).or_default().state = state;
+    }
+
+    /// The status message: `restarts.<node>` and `starts.<node>` counters,
+    /// `pid.<node>` and `state.<node>` labels.
+    pub fn status(&self, started: Instant) -> NodeStatusMessage {
+        let mut msg = NodeStatusMessage::new(LAUNCHER_NAME, "launch", std::process::id());
+        msg.stamp_ns = unix_ns();
+        msg.uptime_s = started.elapsed().as_secs_f64();
+        for (name, child) in self.lock().iter() {
+            msg.counters.insert(format!("starts.{name}"), child.starts);
+            msg.counters
+                .insert(format!("restarts.{name}"), child.starts.saturating_sub(1));
+            msg.labels
+                .insert(format!("pid.{name}"), child.pid.to_string());
+            msg.labels
+                .insert(format!("state.{name}"), child.state.to_string());
+        }
+        msg
+    }
+}
+
+/// Publishes the roster every `period` until aborted.
+pub async fn publish(session: zenoh::Session, topics: Topics, roster: Roster, period: Duration) {
+    let Ok(key) = topics.key(TopicKind::Status, LAUNCHER_NAME) else {
+        return;
+    };
+    let publisher = match crate::transport::topic_publisher(&session, key, TopicKind::Status) {
+        Ok(p) => p,
+        Err(e) => {
+            super::output::err(format!("[launch] no launcher status: {e:#}"));
+            return;
+        }
+    };
+    let started = Instant::now();
+    let mut tick = tokio::time::interval(period);
+    loop {
+        tick.tick().await;
+        if let Ok(bytes) = roster.status(started).to_bytes() {
+            let _ = publisher.put(bytes).wait();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn restarts_count_every_start_after_the_first() {
+        let roster = Roster::default();
+        roster.started("fit", 10);
+        roster.set_state("fit", "restarting");
+        roster.started("fit", 11);
+        roster.started("guard", 12);
+        let msg = roster.status(Instant::now());
+        assert_eq!(msg.node, LAUNCHER_NAME);
+        assert_eq!(msg.kind, "launch");
+        assert_eq!(msg.counter("restarts.fit"), 1);
+        assert_eq!(msg.counter("starts.fit"), 2);
+        assert_eq!(msg.counter("restarts.guard"), 0);
+        assert_eq!(msg.labels["pid.fit"], "11");
+        assert_eq!(msg.labels["state.fit"], "running");
+    }
+}

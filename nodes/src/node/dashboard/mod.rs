@@ -1,0 +1,183 @@
+//! `shroud node dashboard`: the live monitoring page. It serves a page built
+//! into the binary (no file on disk, nothing from the internet) and one
+//! WebSocket per browser (PROTOCOL.md), and draws the namespace's clouds,
+//! surrogates, smooth fits, arms, verdicts and nodes. Subscriptions drop
+//! (each sample supersedes the last), frames are built only while a browser
+//! is connected, and each browser gets only the latest frame of each stream.
+
+mod assets;
+mod builder;
+mod http;
+mod hub;
+mod inbox;
+
+use super::arm_file::read_arm_file;
+use super::runtime::{run_node, NodeCommon, NodeContext};
+use crate::args::take_web_listen;
+use anyhow::{Context, Result};
+use builder::{BuilderConfig, FrameBuilder, Shared};
+use clap::Args;
+use http::{BlendSender, Http};
+use hub::Hub;
+use inbox::Inbox;
+use shroud_core::message::{TopicKey, TopicKind};
+use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::sync::mpsc;
+use std::sync::Arc;
+use std::time::Duration;
+use zenoh::sample::SampleKind;
+use zenoh::Wait;
+
+#[derive(Debug, Clone, Args)]
+pub struct DashboardArgs {
+    #[command(flatten)]
+    pub common: NodeCommon,
+    /// Most points of each cloud sent to a browser (a browser may ask for fewer).
+    #[arg(long, default_value_t = 60_000)]
+    pub point_budget: usize,
+    /// An arm file (as the guard's) whose arm is drawn at its joint states. Repeatable.
+    #[arg(long = "arm-file", value_name = "FILE")]
+    pub arm_files: Vec<PathBuf>,
+    /// Seconds without a verdict after which an arm shows `no-verdict` (STOP).
+    #[arg(long, default_value_t = 0.5)]
+    pub verdict_timeout: f64,
+    /// The blend node to drive (its command stream); default: the first that
+    /// announces itself in the namespace.
+    #[arg(long)]
+    pub blend_stream: Option<String>,
+}
+
+/// Where `--listen` serves unless told otherwise.
+const DEFAULT_LISTEN: &str = "127.0.0.1:8080";
+
+pub fn run(mut args: DashboardArgs) -> Result<()> {
+    let listen = take_web_listen(&mut args.common.zenoh, DEFAULT_LISTEN)?;
+    anyhow::ensure!(
+        (1000..=2_000_000).contains(&args.point_budget),
+        "--point-budget must be 1000 to 2000000 points"
+    );
+    anyhow::ensure!(
+        args.verdict_timeout.is_finite() && args.verdict_timeout > 0.0,
+        "--verdict-timeout must be a positive number of seconds"
+    );
+    let arms = args
+        .arm_files
+        .iter()
+        .map(|path| read_arm_file(path).map(|file| file.arm))
+        .collect::<Result<Vec<_>>>()?;
+    // Bound before the node joins the graph: a taken port is an error now,
+    // not a node that runs without its page.
+    let listener = std::net::TcpListener::bind(listen).with_context(|| {
+        format!("cannot serve the dashboard on {listen} (is the port taken? --listen 127.0.0.1:0 picks a free one)")
+    })?;
+    listener.set_nonblocking(true)?;
+    let common = args.common.clone();
+    let config = BuilderConfig {
+        namespace: common.zenoh.namespace.clone(),
+        node: String::new(),
+        point_budget: args.point_budget,
+        arms,
+        verdict_timeout_ns: (args.verdict_timeout * 1e9) as u64,
+        blend_stream: args.blend_stream.clone(),
+    };
+    run_node(&common, "dashboard", move |ctx| {
+        serve(ctx, listener, config)
+    })
+}
+
+fn serve(
+    ctx: Arc<NodeContext>,
+    listener: std::net::TcpListener,
+    mut config: BuilderConfig,
+) -> Result<()> {
+    config.node = ctx.name.clone();
+    let point_budget = config.point_budget;
+    let (hub, inbox, shared) = (
+        Arc::new(Hub::default()),
+        Arc::new(Inbox::new()),
+        Arc::new(Shared::default()),
+    );
+    let _subscribers = subscribe(&ctx, &inbox)?;
+    let (tokens_tx, tokens) = mpsc::channel();
+    let _tokens = watch_tokens(&ctx, tokens_tx)?;
+    let builder = FrameBuilder::new(ctx.clone(), hub.clone(), inbox, shared.clone(), config);
+    let building = std::thread::Builder::new()
+        .name("frames".into())
+        .spawn(move || builder.run(&tokens))
+        .context("cannot start the frame builder")?;
+    let http = Http {
+        ctx: ctx.clone(),
+        hub: hub.clone(),
+        shared,
+        point_budget,
+        blend: Arc::new(BlendSender::default()),
+    };
+    let served = tokio::runtime::Handle::current().block_on(serve_http(listener, http));
+    hub.close_all();
+    let _ = building.join();
+    served
+}
+
+/// Serves the page until the node stops.
+async fn serve_http(listener: std::net::TcpListener, http: Http) -> Result<()> {
+    let ctx = http.ctx.clone();
+    let listener = tokio::net::TcpListener::from_std(listener)?;
+    let address: SocketAddr = listener.local_addr()?;
+    let url = format!("http://{address}/");
+    ctx.metrics.set_label("dashboard.url".into(), url.clone());
+    tracing::info!("serving the dashboard at {url}");
+    let stop = ctx.clone();
+    axum::serve(listener, http::router(http))
+        .with_graceful_shutdown(async move {
+            while !stop.stopping() {
+                tokio::time::sleep(Duration::from_millis(50)).await;
+            }
+        })
+        .await
+        .context("the dashboard's HTTP server failed")
+}
+
+/// Every drawable or reported topic of the namespace into the inbox.
+fn subscribe(ctx: &NodeContext, inbox: &Arc<Inbox>) -> Result<Vec<zenoh::pubsub::Subscriber<()>>> {
+    [
+        TopicKind::Cloud,
+        TopicKind::Surrogate,
+        TopicKind::Smooth,
+        TopicKind::Joints,
+        TopicKind::Collision,
+        TopicKind::Status,
+    ]
+    .into_iter()
+    .map(|kind| {
+        let key = ctx.key(kind, "*")?;
+        let inbox = inbox.clone();
+        ctx.session
+            .declare_subscriber(&key)
+            .callback(move |sample| {
+                inbox.push(sample.key_expr().as_str(), sample.payload().clone())
+            })
+            .wait()
+            .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))
+    })
+    .collect()
+}
+
+/// Liveliness tokens of the namespace's nodes, present ones first (history).
+fn watch_tokens(
+    ctx: &NodeContext,
+    tokens: mpsc::Sender<(String, bool)>,
+) -> Result<zenoh::pubsub::Subscriber<()>> {
+    let key = ctx.key(TopicKind::Alive, "*")?;
+    ctx.session
+        .liveliness()
+        .declare_subscriber(&key)
+        .history(true)
+        .callback(move |sample| {
+            if let Some(topic) = TopicKey::parse(sample.key_expr().as_str()) {
+                let _ = tokens.send((topic.name, sample.kind() == SampleKind::Put));
+            }
+        })
+        .wait()
+        .map_err(|e| anyhow::anyhow!("liveliness {key}: {e}"))
+}
