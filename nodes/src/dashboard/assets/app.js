@@ -140,5 +140,5 @@ setInterval(() => {
   const nowMs = performance.now();
   for (const p of Object.values(plots)) p.draw(nowMs);
   status.refresh(dashboardCounters);
-  if (view) legend.update(view.options.colorMode, Object.keys(view.points.pointCounts()), view.points.heightRange());
+  if (view) legend.update(view.options.colorMode, view.points.streamColors(), view.points.heightRange());
 }, 250);

@@ -111,7 +111,7 @@ export class BlendPanel {
     this.adjustSentValues = JSON.stringify(this.values);
     const v = (name) => ADJUSTMENTS[name].toCommand(this.values[name]);
     this.command({ command: 'adjust', spin: v('spin'), lift: v('lift'), tilt: [v('tiltA'), v('tiltB')] },
-      `adjust ${Object.entries(ADJUSTMENTS).map(([n, s]) => `${s.label} ${this.values[n]}${s.unit}`).join(', ')}`);
+      `adjust ${Object.entries(ADJUSTMENTS).map(([n, s]) => `${s.label} ${this.values[n]} ${s.unit}`).join(', ')}`);
   }
 
   commit() {

@@ -2,7 +2,7 @@
 // point colouring in force (height range, intensity, or each stream and blend source), surfaces
 // and the arm's clearance bands.
 
-import { BAND_COLORS, BLEND_SOURCE_COLORS, BLEND_SOURCE_NAMES, STREAM_COLORS, SURFACE_COLORS, cssColor } from './scene/colors.js';
+import { BAND_COLORS, BLEND_SOURCE_COLORS, BLEND_SOURCE_NAMES, SURFACE_COLORS, cssColor } from './scene/colors.js';
 import { fixed } from './format.js';
 
 const BAND_LABELS = {
@@ -43,7 +43,7 @@ export class Legend {
     this.shown = '';
   }
 
-  // mode: the colour mode; streams: stream names in slot order; heightRange: [zMin, zMax].
+  // mode: the colour mode; streams: [{stream, color}]; heightRange: [zMin, zMax].
   update(mode, streams, heightRange) {
     const key = JSON.stringify([mode, streams, heightRange.map((z) => fixed(z, 2))]);
     if (key === this.shown) return;
@@ -54,7 +54,7 @@ export class Legend {
     } else if (mode === 'intensity') {
       items.push(ramp('intensity-ramp', 'intensity, low → high per cloud'));
     } else {
-      streams.forEach((stream, slot) => items.push(swatch(cssColor(STREAM_COLORS[slot % STREAM_COLORS.length]), stream)));
+      streams.forEach(({ stream, color }) => items.push(swatch(cssColor(color), stream)));
       BLEND_SOURCE_NAMES.forEach((name, i) => items.push(swatch(cssColor(BLEND_SOURCE_COLORS[i]), `blend ${name}`)));
     }
     this.points.replaceChildren(...items);

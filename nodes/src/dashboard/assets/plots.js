@@ -124,11 +124,11 @@ export class TimeSeriesPlot {
       context.stroke();
       context.fillText(formatValue(v), frame.left - 4, py);
     }
-    context.textAlign = 'center';
     context.textBaseline = 'top';
     const seconds = this.windowMs / 1000;
     for (let s = 0; s <= seconds; s += seconds / 4) {
       const px = frame.left + (s / seconds) * (frame.right - frame.left);
+      context.textAlign = s === seconds ? 'right' : 'center';
       context.fillText(s === seconds ? 'now' : `-${seconds - s} s`, px, frame.bottom + 5);
     }
   }

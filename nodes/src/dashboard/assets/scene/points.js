@@ -207,6 +207,11 @@ export class PointRenderer {
     return counts;
   }
 
+  // The streams coloured by their own colour under "source" (all but blend outputs), in order.
+  streamColors() {
+    return [...this.layers].filter(([, layer]) => !layer.cloud.blendSources).map(([stream, layer]) => ({ stream, color: layer.color }));
+  }
+
   pointCounts() {
     return Object.fromEntries([...this.layers].map(([stream, layer]) => [stream, layer.count]));
   }
