@@ -22,23 +22,51 @@ export class SceneView {
     this.canvas = canvas;
     this.freshVerdict = freshVerdict;
     this.camera = new OrbitCamera();
+    this.createRenderers();
+    this.options = {
+      pointSize: 2, colorMode: 'height', paused: false,
+      visible: { clouds: true, upper: true, lower: true, smooth: true, arm: true, axes: true },
+    };
+    this.pending = { clouds: new Map(), surrogates: new Map(), smooths: new Map(), arms: new Map() };
+    this.shown = { clouds: new Map(), surrogates: new Map(), smooths: new Map() }; // uploaded, by stream
+    this.armMessages = new Map();
+    this.armFreshness = new Map(); // arm -> whether its colours were made from a fresh verdict
+    this.fitted = false;
+    this.needsDraw = true;
+    this.inFlight = null; // fence after the last frame drawn
+    this.contextLost = false;
+    new ResizeObserver(() => this.requestDraw()).observe(canvas);
+    canvas.addEventListener('webglcontextlost', (event) => this.onContextLost(event));
+    canvas.addEventListener('webglcontextrestored', () => this.onContextRestored());
+  }
+
+  // Every GL object lives in these; a restored context needs them all anew.
+  createRenderers() {
+    const { gl } = this;
     this.points = new PointRenderer(gl);
     this.meshes = new MeshRenderer(gl);
     this.arms = new ArmRenderer(gl);
     this.lines = new LineRenderer(gl);
     this.picker = new Picker(gl);
     this.axes = axes(gl, 0.25);
-    this.options = {
-      pointSize: 2, colorMode: 'height', paused: false,
-      visible: { clouds: true, upper: true, lower: true, smooth: true, arm: true, axes: true },
-    };
-    this.pending = { clouds: new Map(), surrogates: new Map(), smooths: new Map(), arms: new Map() };
-    this.armMessages = new Map();
-    this.armFreshness = new Map(); // arm -> whether its colours were made from a fresh verdict
-    this.fitted = false;
-    this.needsDraw = true;
-    this.inFlight = null; // fence after the last frame drawn
-    new ResizeObserver(() => this.requestDraw()).observe(canvas);
+  }
+
+  // preventDefault asks the browser to restore the context (a GPU reset, a driver update).
+  onContextLost(event) {
+    event.preventDefault();
+    this.contextLost = true;
+    this.inFlight = null;
+  }
+
+  // Rebuilds the renderers and uploads the latest of everything again (unless newer is pending).
+  onContextRestored() {
+    this.contextLost = false;
+    this.createRenderers();
+    for (const kind of ['clouds', 'surrogates', 'smooths']) {
+      for (const [key, message] of this.shown[kind]) if (!this.pending[kind].has(key)) this.pending[kind].set(key, message);
+    }
+    for (const [name, arm] of this.armMessages) if (!this.pending.arms.has(name)) this.pending.arms.set(name, arm);
+    this.requestDraw();
   }
 
   setCloud(cloud) { this.pending.clouds.set(cloud.stream, cloud); }
@@ -78,7 +106,7 @@ export class SceneView {
 
   start() {
     const frame = () => {
-      if (this.gpuIsIdle()) {
+      if (!this.contextLost && this.gpuIsIdle()) {
         this.uploadPending();
         this.recolourArmsWhoseVerdictAged();
         if (this.resize() || this.needsDraw) {
@@ -115,7 +143,11 @@ export class SceneView {
     for (const arm of arms.values()) this.uploadArm(arm);
     if (clouds.size + surrogates.size + smooths.size + arms.size > 0) this.requestDraw();
     if (!this.fitted && clouds.size > 0) this.fitted = this.fitToData();
-    clouds.clear(); surrogates.clear(); smooths.clear(); arms.clear();
+    for (const kind of ['clouds', 'surrogates', 'smooths']) {
+      for (const [key, message] of this.pending[kind]) this.shown[kind].set(key, message);
+      this.pending[kind].clear();
+    }
+    arms.clear();
   }
 
   uploadArm(arm) {
