@@ -9,10 +9,13 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { CHECKS } from './checks/index.mjs';
 import { UsageError, parseArgs, usage } from './lib/args.mjs';
-import { MissingTool, openPage } from './lib/browser.mjs';
+import { MissingTool, PageUnreachable, openPage } from './lib/browser.mjs';
 import { CheckFailed } from './lib/page.mjs';
 
 const EXIT = { passed: 0, failed: 1, usage: 2, missingTool: 3 };
+// The README's screenshot is larger; the checks draw less (software rendering on two cores).
+const VIEWPORT = { width: 1280, height: 800 };
+const SCREENSHOT_VIEWPORT = { width: 1600, height: 1000 };
 
 function report(result, exitCode) {
   process.stdout.write(`${JSON.stringify(result)}\n`);
@@ -37,14 +40,15 @@ async function main() {
   let result;
   let exitCode;
   try {
-    session = await openPage({ url: options.url, chromium: options.chromium });
+    const viewport = check === 'screenshot' ? SCREENSHOT_VIEWPORT : VIEWPORT;
+    session = await openPage({ url: options.url, chromium: options.chromium, viewport });
     const details = await CHECKS[check]({ ...session, options, out, timeoutMs: options['timeout-ms'] });
     const screenshot = await saveScreenshot(session.page, out, check);
     result = { check, ok: true, ...details, screenshot, problems: session.problems };
     exitCode = EXIT.passed;
   } catch (error) {
     const screenshot = session ? await saveScreenshot(session.page, out, check) : null;
-    const expected = error instanceof CheckFailed || error instanceof MissingTool;
+    const expected = [CheckFailed, MissingTool, PageUnreachable].some((kind) => error instanceof kind);
     const message = expected ? error.message : `${error.name}: ${error.message}`;
     result = { check, ok: false, error: message, screenshot, problems: session?.problems ?? [] };
     exitCode = error instanceof MissingTool ? EXIT.missingTool : EXIT.failed;

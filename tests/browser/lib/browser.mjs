@@ -5,6 +5,7 @@
 import fs from 'node:fs';
 
 export class MissingTool extends Error {}
+export class PageUnreachable extends Error {}
 
 // --use-angle=swiftshader rather than --disable-gpu: with --disable-gpu the software compositor
 // reads every WebGL frame back and Chromium logs each read as a console warning ("GPU stall due
@@ -24,7 +25,7 @@ async function loadPlaywright() {
 }
 
 // Opens `url` in a fresh browser; returns {browser, page, problems}.
-export async function openPage({ url, chromium: executablePath, viewport = { width: 1600, height: 1000 } }) {
+export async function openPage({ url, chromium: executablePath, viewport }) {
   if (!fs.existsSync(executablePath)) {
     throw new MissingTool(`Chromium not found at ${executablePath}: apt-get install chromium (or pass --chromium PATH)`);
   }
@@ -42,6 +43,11 @@ export async function openPage({ url, chromium: executablePath, viewport = { wid
   page.on('response', (response) => {
     if (response.status() >= 400) problems.push(`HTTP ${response.status()} for ${response.url()}`);
   });
-  await page.goto(url);
+  try {
+    await page.goto(url);
+  } catch (error) {
+    await browser.close();
+    throw new PageUnreachable(`cannot open ${url}: ${error.message.split('\n')[0].replace(/\x1b\[[0-9;]*m/g, '')}`);
+  }
   return { browser, page, problems };
 }
