@@ -17,6 +17,7 @@ import { attachCameraControls } from './scene/camera_controls.js';
 import { SceneView } from './scene/view.js';
 import { StatusBar } from './status_bar.js';
 import { StopBanner, bannerState } from './stop_banner.js';
+import { StreamList } from './stream_list.js';
 import { installTestHooks } from './test_hooks.js';
 import { VerdictBook } from './verdicts.js';
 
@@ -49,6 +50,7 @@ const nodesTable = new NodesTable($('nodes-table'), $('nodes-summary'));
 const certificates = new CertificatesTable($('certificates-body'));
 const banner = new StopBanner($('stop-banner'));
 const legend = new Legend($('legend'));
+const streams = new StreamList($('streams'));
 let hello = null; // the current connection's
 let dashboardCounters = null;
 
@@ -61,7 +63,10 @@ const handlers = {
     controls.onHello(hello);
     blend.setBlend(hello.blend);
   },
-  cloud: (cloud) => view?.setCloud(cloud),
+  cloud: (cloud, nowMs) => {
+    view?.setCloud(cloud);
+    streams.onCloud(cloud, nowMs);
+  },
   surrogate: (surrogate) => {
     view?.setSurrogate(surrogate);
     certificates.update(surrogate);
@@ -140,5 +145,6 @@ setInterval(() => {
   const nowMs = performance.now();
   for (const p of Object.values(plots)) p.draw(nowMs);
   status.refresh(dashboardCounters);
+  streams.render(nowMs);
   if (view) legend.update(view.options.colorMode, view.points.streamColors(), view.points.heightRange());
 }, 250);
