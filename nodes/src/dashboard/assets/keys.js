@@ -4,7 +4,7 @@
 // Each binding: {keys: [KeyboardEvent.key values], label shown in the help, action()}.
 export function keyBindings({ view, controls, blend }) {
   return [
-    { keys: ['0', 'Home'], label: 'reset view (fit the clouds)', action: () => view?.setView('reset') },
+    { keys: ['0', 'Home'], label: 'reset view (fit the clouds and follow them)', action: () => view?.setView('reset') },
     { keys: ['1'], label: 'top view', action: () => view?.setView('top') },
     { keys: ['2'], label: 'front view (along −x)', action: () => view?.setView('front') },
     { keys: ['3'], label: 'side view (along +y)', action: () => view?.setView('side') },

@@ -23,7 +23,7 @@ export function attachCameraControls(canvas, view) {
     } else {
       view.camera.pan(dx / canvas.clientHeight, dy / canvas.clientHeight);
     }
-    view.requestDraw();
+    view.cameraMovedByUser();
   });
   const endDrag = (event) => {
     drag = null;
@@ -34,6 +34,6 @@ export function attachCameraControls(canvas, view) {
   canvas.addEventListener('wheel', (event) => {
     event.preventDefault();
     view.camera.zoom(ZOOM_PER_WHEEL_PIXEL ** event.deltaY);
-    view.requestDraw();
+    view.cameraMovedByUser();
   }, { passive: false });
 }

@@ -40,6 +40,12 @@ class MeshLayer {
     this.indices.upload(mesh.indices);
     gl.bindVertexArray(null);
   }
+
+  delete(gl) {
+    this.positions.delete();
+    this.indices.delete();
+    gl.deleteVertexArray(this.vao);
+  }
 }
 
 export class MeshRenderer {
@@ -56,6 +62,7 @@ export class MeshRenderer {
       const key = `${stream}/${kind}`;
       const mesh = meshes[kind];
       if (!mesh) {
+        this.layers.get(key)?.delete(this.gl);
         this.layers.delete(key);
         continue;
       }

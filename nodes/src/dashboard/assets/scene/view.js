@@ -13,6 +13,11 @@ export const BACKGROUND = [0.06, 0.075, 0.095];
 const SURROGATE_SIDES = ['upper', 'lower'];
 const MAX_DEVICE_PIXEL_RATIO = 2;
 
+const union = (a, b) => ({
+  min: a.min.map((value, axis) => Math.min(value, b.min[axis])),
+  max: a.max.map((value, axis) => Math.max(value, b.max[axis])),
+});
+
 export class SceneView {
   // `freshVerdict(arm)` is the arm's latest verdict while it is fresh, else null.
   constructor(canvas, { freshVerdict }) {
@@ -31,7 +36,8 @@ export class SceneView {
     this.shown = { clouds: new Map(), surrogates: new Map(), smooths: new Map() }; // uploaded, by stream
     this.armMessages = new Map();
     this.armFreshness = new Map(); // arm -> whether its colours were made from a fresh verdict
-    this.fitted = false;
+    this.fittedBounds = null; // the box the camera was last fitted to
+    this.followData = true; // refit when the data outgrow that box, until the user moves the camera
     this.needsDraw = true;
     this.inFlight = null; // fence after the last frame drawn
     this.contextLost = false;
@@ -93,15 +99,37 @@ export class SceneView {
   // "reset" also re-centres on the data; "top", "front" and "side" turn about the same target.
   setView(name) {
     this.camera.setView(name);
-    if (name === 'reset') this.fitToData();
+    if (name === 'reset') {
+      this.followData = true;
+      this.fitToData();
+    }
+    this.requestDraw();
+  }
+
+  // The user orbits, pans or zooms: the camera is theirs until the next reset.
+  cameraMovedByUser() {
+    this.followData = false;
     this.requestDraw();
   }
 
   fitToData() {
     const bounds = this.points.bounds();
-    if (!bounds) return false;
+    if (bounds) this.fitTo(bounds);
+  }
+
+  fitTo(bounds) {
     this.camera.fit(bounds.min, bounds.max);
-    return true;
+    this.fittedBounds = bounds;
+  }
+
+  // True when `bounds` reach out of the fitted box by more than a tenth of its size: the view
+  // follows a scene that grows (a second stream arrives) but not each move of a moving object.
+  outgrowsFit(bounds) {
+    const fitted = this.fittedBounds;
+    if (!fitted) return true;
+    const slack = 0.1 * Math.max(...fitted.max.map((max, axis) => max - fitted.min[axis]));
+    return bounds.min.some((min, axis) => min < fitted.min[axis] - slack) ||
+      bounds.max.some((max, axis) => max > fitted.max[axis] + slack);
   }
 
   start() {
@@ -142,7 +170,10 @@ export class SceneView {
     for (const s of smooths.values()) this.meshes.upload(s.stream, ['smooth'], { smooth: s.mesh });
     for (const arm of arms.values()) this.uploadArm(arm);
     if (clouds.size + surrogates.size + smooths.size + arms.size > 0) this.requestDraw();
-    if (!this.fitted && clouds.size > 0) this.fitted = this.fitToData();
+    if (this.followData && clouds.size > 0) {
+      const bounds = this.points.bounds();
+      if (bounds && this.outgrowsFit(bounds)) this.fitTo(this.fittedBounds ? union(this.fittedBounds, bounds) : bounds);
+    }
     for (const kind of ['clouds', 'surrogates', 'smooths']) {
       for (const [key, message] of this.pending[kind]) this.shown[kind].set(key, message);
       this.pending[kind].clear();
