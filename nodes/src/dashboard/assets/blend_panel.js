@@ -5,10 +5,10 @@
 
 const ADJUST_SEND_INTERVAL_MS = 100; // a slider drag sends at most this often (the latest values)
 const DEGREES = Math.PI / 180;
-export const PART_MIME = 'application/x-shroud-part';
+const PART_MIME = 'application/x-shroud-part';
 
 // The on-screen adjustment controls: name, unit shown, step of a key press, range.
-export const ADJUSTMENTS = {
+const ADJUSTMENTS = {
   spin: { label: 'spin', unit: '°', step: 5, min: -180, max: 180, toCommand: (v) => v * DEGREES },
   lift: { label: 'lift', unit: 'mm', step: 5, min: -200, max: 200, toCommand: (v) => v / 1000 },
   tiltA: { label: 'tilt a', unit: '°', step: 2, min: -60, max: 60, toCommand: (v) => v * DEGREES },

@@ -46,7 +46,7 @@ void main() { outColor = vec4(lit(color, normal), 1.0); }`;
 const FLOATS_PER_INSTANCE = 10; // startRadius (4), end (3), colour (3)
 
 // The colour of link `name` under `verdict` (null: no fresh verdict).
-export function linkColor(name, verdict) {
+function linkColor(name, verdict) {
   if (!verdict) return BAND_COLORS.unknown;
   if (verdict.stop && verdict.closestLink === name) return BAND_COLORS.stopping;
   const entry = verdict.links.find((link) => link.link === name);

@@ -72,7 +72,7 @@ flat in vec4 id;
 out vec4 outColor;
 void main() { outColor = id; }`;
 
-export const MAX_PICKABLE_POINTS = (1 << 24) - 2;
+const MAX_PICKABLE_POINTS = (1 << 24) - 2;
 
 // min and max of the finite values of `values` taken every `stride` from `offset`.
 function finiteRange(values, stride, offset) {
