@@ -2,15 +2,13 @@
 // drag and drop, and waits for the node's blend_result; an error result fails. Then waits for the
 // composed cloud (blend_sources) to come back and reports its parent, part and transition counts.
 
-import { CheckFailed, waitForHello, waitForSnapshot, waitInPage } from '../lib/page.mjs';
-
-const hasPoints = (s) => Object.values(s.points).some((n) => n > 0) && s.litPixels > 0;
+import { CheckFailed, waitForCloudsOnCanvas, waitForHello, waitForSnapshot, waitInPage } from '../lib/page.mjs';
 
 export async function run({ page, timeoutMs }) {
   await waitForHello(page, timeoutMs);
   const blend = await page.evaluate(() => window.__shroud.hello?.blend ?? null);
   if (!blend) throw new CheckFailed('the hello names no blend stream: nothing to drag');
-  await waitForSnapshot(page, 'cloud points on the canvas', { clouds: true }, hasPoints, timeoutMs);
+  await waitForCloudsOnCanvas(page, timeoutMs);
   await page.click('[data-view="reset"]'); // the clouds centred in the view
   const part = page.locator('#palette .part').first();
   const partName = await part.getAttribute('data-part');

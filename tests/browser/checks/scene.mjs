@@ -4,9 +4,7 @@
 // (when the hello names an arm), and more pixels with clouds and surfaces than clouds alone.
 // Then loses and restores the WebGL context (WEBGL_lose_context) and waits for the points again.
 
-import { CheckFailed, snapshot, waitForHello, waitForSnapshot } from '../lib/page.mjs';
-
-const hasPoints = (s) => Object.values(s.points).some((n) => n > 0) && s.litPixels > 0;
+import { CheckFailed, snapshot, waitForCloudsOnCanvas, waitForHello, waitForSnapshot } from '../lib/page.mjs';
 const hasSurfaces = (s) => Object.values(s.triangles).some((n) => n > 0) && s.litPixels > 0;
 const hasArm = (s) => Object.keys(s.arms).length > 0 && s.litPixels > 0;
 
@@ -24,7 +22,7 @@ async function loseAndRestoreContext(page, timeoutMs) {
 
 export async function run({ page, timeoutMs }) {
   await waitForHello(page, timeoutMs);
-  const clouds = await waitForSnapshot(page, 'cloud points on the canvas', { clouds: true }, hasPoints, timeoutMs);
+  const clouds = await waitForCloudsOnCanvas(page, timeoutMs);
   const surfaces = await waitForSnapshot(page, 'surrogate surfaces on the canvas', { upper: true, lower: true }, hasSurfaces, timeoutMs);
   const armsAnnounced = await page.evaluate(() => window.__shroud.hello?.arms.length ?? 0);
   const arm = armsAnnounced > 0

@@ -27,6 +27,12 @@ export function waitForSnapshot(page, what, visible, ready, timeoutMs) {
   return waitInPage(page, what, expression, undefined, timeoutMs);
 }
 
+// Waits for cloud points drawn on the canvas; returns that snapshot (clouds alone).
+export function waitForCloudsOnCanvas(page, timeoutMs) {
+  return waitForSnapshot(page, 'cloud points on the canvas', { clouds: true },
+    (s) => Object.values(s.points).some((n) => n > 0) && s.litPixels > 0, timeoutMs);
+}
+
 export const snapshot = (page, visible) => page.evaluate((layers) => window.__shroud.snapshot(layers), visible);
 
 export async function malformedFrames(page) {
