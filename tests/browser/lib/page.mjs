@@ -1,5 +1,5 @@
 // What the checks read from the dashboard page, through its DOM and its one test hook
-// (window.__shroud.snapshot, nodes/src/dashboard/assets/test_hooks.js).
+// (window.__shroud.snapshot, nodes/src/node/dashboard/assets/test_hooks.js).
 
 export class CheckFailed extends Error {}
 

@@ -1,4 +1,4 @@
-// Loads the dashboard page's ES modules (nodes/src/dashboard/assets) into Node for unit tests:
+// Loads the dashboard page's ES modules (nodes/src/node/dashboard/assets) into Node for unit tests:
 // the assets have no package.json (they are served as-is), so they are copied beside one that
 // marks them as ES modules.
 
@@ -7,7 +7,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
-const ASSETS = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../../nodes/src/dashboard/assets');
+const ASSETS = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../../nodes/src/node/dashboard/assets');
 
 let copy = null;
 

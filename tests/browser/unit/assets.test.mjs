@@ -8,7 +8,7 @@ import path from 'node:path';
 import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
 
-const DASHBOARD = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../../nodes/src/dashboard');
+const DASHBOARD = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../../nodes/src/node/dashboard');
 const ASSETS = path.join(DASHBOARD, 'assets');
 
 function assetFiles(dir = ASSETS) {
