@@ -5,7 +5,7 @@
 mod common;
 
 use common::{alive, assert_all_gone, client_of, joint_spread, KillOnDrop, Proc, Reaped};
-use shroud_core::message::{CollisionMessage, SurrogateMessage};
+use shroud_core::message::{CollisionMessage, NodeStatusMessage, SurrogateMessage};
 use std::io::{BufRead, BufReader};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -446,4 +446,52 @@ fn introspection_tools_see_the_running_graph() {
     launcher.signal(libc::SIGTERM);
     assert!(launcher.wait_exit(LONG).success());
     assert_all_gone(&pids, Duration::from_secs(5));
+}
+
+/// The README's main command: `launch/demo.toml` runs, the launcher prints the
+/// dashboard's address and the summary line, the page answers at that
+/// address, and the launcher's own status counts every node's starts.
+#[test]
+fn the_demo_launch_file_runs_and_prints_the_dashboard() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/launch/demo.toml");
+    let mut launcher = Proc::start(&["launch", file, "--duration", "20"]);
+    let endpoint = endpoint_of(&launcher);
+    let line = launcher.expect_line("open http://127.0.0.1:8080/ in a browser", LONG);
+    assert!(line.contains("dashboard"), "{line}");
+    let page = http_get("127.0.0.1:8080", "/");
+    assert!(
+        page.starts_with("HTTP/1.1 200") && page.contains("<html"),
+        "{page}"
+    );
+    launcher.expect_line("arm: ", LONG);
+    let session = client_of(&endpoint);
+    let statuses = session
+        .declare_subscriber("shroud/demo/status/launcher")
+        .wait()
+        .unwrap();
+    let sample = statuses
+        .recv_timeout(LONG)
+        .unwrap()
+        .expect("the launcher's status");
+    let status = NodeStatusMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+    assert_eq!(status.kind, "launch");
+    for node in ["scanner", "fit", "guard", "arm", "dashboard"] {
+        assert_eq!(status.counter(&format!("starts.{node}")), 1, "{status:?}");
+        assert_eq!(status.counter(&format!("restarts.{node}")), 0, "{status:?}");
+    }
+    assert!(launcher.wait_exit(LONG).success(), "{}", launcher.output());
+}
+
+/// A plain HTTP/1.1 GET on loopback: the response's head and body as text.
+fn http_get(address: &str, path: &str) -> String {
+    use std::io::{Read, Write};
+    let mut stream = std::net::TcpStream::connect(address).expect("the dashboard listens");
+    write!(
+        stream,
+        "GET {path} HTTP/1.1\r\nHost: {address}\r\nConnection: close\r\n\r\n"
+    )
+    .unwrap();
+    let mut response = String::new();
+    stream.read_to_string(&mut response).unwrap();
+    response
 }

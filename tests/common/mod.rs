@@ -3,6 +3,7 @@
 //! liveness checks.
 #![allow(dead_code)]
 
+pub mod browser;
 pub mod device_rig;
 
 use std::io::{BufRead, BufReader};

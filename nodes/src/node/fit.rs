@@ -162,6 +162,7 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
         ctx.metrics.set("publish_ms", publish_ms);
         if let (Some(f), Some(l)) = (fit_ms.summary(), latency_ms.summary()) {
             ctx.metrics.set("fit_p50_ms", f.p50);
+            ctx.metrics.set("fit_p99_ms", f.p99);
             ctx.metrics.set("latency_p50_ms", l.p50);
             ctx.metrics.set("latency_p99_ms", l.p99);
         }

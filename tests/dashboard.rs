@@ -1,0 +1,254 @@
+//! The dashboard end to end: a real graph (scanner, fit, guard, arm, blend),
+//! the `dashboard` node, and the page in a real headless Chromium driven by
+//! playwright-core (tests/browser/). The page loads without console errors,
+//! draws the cloud and the surfaces, its plots advance, a killed node's row
+//! turns red, a part dragged onto the cloud makes the blend node publish a
+//! composed cloud with transition points, and a stop verdict shows the STOP
+//! banner. Screenshots go to target/tmp/dashboard/<test>/.
+
+mod common;
+
+use common::browser::{browser_available, check, node_dies, out_dir};
+use common::{hub_on_free_port, wiring, Proc};
+use shroud_core::message::CloudMessage;
+use std::time::{Duration, Instant};
+use zenoh::Wait;
+
+const START: Duration = Duration::from_secs(60);
+const ARM_FILE: &str = "launch/arms/demo_arm.toml";
+
+/// Starts the dashboard on a free port and returns it with its URL.
+fn dashboard(w: &[&str]) -> (Proc, String) {
+    let node = Proc::start(
+        &[
+            &[
+                "node",
+                "dashboard",
+                "--listen",
+                "127.0.0.1:0",
+                "--arm-file",
+                ARM_FILE,
+                "--log",
+                "info",
+            ][..],
+            w,
+        ]
+        .concat(),
+    );
+    let line = node.expect_line("serving the dashboard at ", START);
+    let url = line
+        .split("serving the dashboard at ")
+        .nth(1)
+        .expect("a URL after the words")
+        .trim()
+        .to_string();
+    (node, url)
+}
+
+/// The demo's graph (moving spheres, a sandwich fit, the guard watching the
+/// arm) with the dashboard: the page shows it all, and a killed fit node
+/// turns red within two seconds.
+#[test]
+fn the_page_shows_the_demo_and_a_killed_node() {
+    if !browser_available() {
+        return;
+    }
+    let (endpoint, _hub) = hub_on_free_port();
+    let w = wiring(&endpoint, "e2e-dash");
+    let _scanner = Proc::start(
+        &[
+            &[
+                "node",
+                "scanner",
+                "--config",
+                "launch/scenes/demo_spheres.json",
+                "--rate",
+                "10",
+                "--stream",
+                "spheres",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let fit = Proc::start(
+        &[
+            &[
+                "node", "fit", "--name", "fit", "--input", "spheres", "--grid", "16x16", "--side",
+                "sandwich",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let _guard = Proc::start(
+        &[
+            &[
+                "node",
+                "guard",
+                "--arm-file",
+                ARM_FILE,
+                "--surrogate",
+                "spheres",
+                "--max-obstacle-speed",
+                "1.3",
+                "--max-age",
+                "0.5",
+                "--unobserved",
+                "ignore",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let _arm = Proc::start(
+        &[
+            &["node", "arm", "--arm-file", ARM_FILE, "--rate", "50"][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let (_dashboard, url) = dashboard(&w);
+    let out = out_dir("demo");
+    check(&url, &out, "loads", &[]);
+    let scene = check(&url, &out, "scene", &[]);
+    eprintln!("scene: {scene}");
+    let plots = check(
+        &url,
+        &out,
+        "plots",
+        &["--plots", "fit,latency,clearance,rates,drops"],
+    );
+    eprintln!("plots: {plots}");
+    check(&url, &out, "screenshot", &[]);
+    let died = node_dies(&url, &out, "fit", || fit.signal(libc::SIGKILL));
+    let elapsed = died["elapsed_ms"].as_f64().expect("the time it took");
+    assert!(
+        elapsed < 2000.0,
+        "the fit row turned red after {elapsed} ms: {died}"
+    );
+}
+
+/// A blend node over the table top and a guard whose stop distance no arm
+/// pose can clear: a part dragged from the palette onto the cloud comes back
+/// composed with transition points, and the STOP banner shows the stop.
+#[test]
+fn a_dragged_part_is_blended_and_a_stop_shows_the_banner() {
+    if !browser_available() {
+        return;
+    }
+    let (endpoint, hub) = hub_on_free_port();
+    let ns = "e2e-dash-blend";
+    let w = wiring(&endpoint, ns);
+    let models = hub
+        .declare_subscriber(format!("shroud/{ns}/cloud/blend"))
+        .wait()
+        .unwrap();
+    let _scanner = Proc::start(
+        &[
+            &[
+                "node",
+                "scanner",
+                "--scene",
+                "table-top",
+                "--points",
+                "20000",
+                "--rate",
+                "2",
+                "--stream",
+                "table",
+                "--time-scale",
+                "0",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let _blend = Proc::start(
+        &[
+            &[
+                "node",
+                "blend",
+                "--parent-stream",
+                "table",
+                "--child-part",
+                "hemisphere",
+                "--child-part",
+                "half-cylinder",
+                "--part-size",
+                "0.3",
+                "--stream",
+                "blend",
+                "--centres",
+                "400",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let _fit = Proc::start(
+        &[
+            &["node", "fit", "--input", "table", "--grid", "16x16"][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let _guard = Proc::start(
+        &[
+            &[
+                "node",
+                "guard",
+                "--arm-file",
+                ARM_FILE,
+                "--surrogate",
+                "table",
+                "--stop-distance",
+                "5",
+                "--unobserved",
+                "ignore",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let _arm = Proc::start(
+        &[
+            &["node", "arm", "--arm-file", ARM_FILE, "--rate", "20"][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let (_dashboard, url) = dashboard(&w);
+    let out = out_dir("blend");
+    let dragged = check(&url, &out, "drag_part", &[]);
+    eprintln!("drag: {dragged}");
+    // What the blend node published, seen on zenoh: the composed cloud.
+    let deadline = Instant::now() + START;
+    let transition = loop {
+        assert!(
+            Instant::now() < deadline,
+            "no composed cloud with transition points"
+        );
+        let Ok(Some(sample)) = models.recv_timeout(Duration::from_millis(500)) else {
+            continue;
+        };
+        let msg = CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+        let sources = msg
+            .intensity_array()
+            .unwrap()
+            .expect("sources as intensity");
+        let transition = sources.iter().filter(|&&s| s == 2.0).count();
+        if transition > 0 {
+            break transition;
+        }
+    };
+    eprintln!("transition points: {transition}");
+    let banner = check(
+        &url,
+        &out,
+        "stop_banner",
+        &["--expect", "within the stop distance"],
+    );
+    let text = banner["text"].as_str().unwrap_or("").to_lowercase();
+    assert!(text.contains("stop distance"), "{banner}");
+}
