@@ -2,8 +2,10 @@
 //! scene and prints them beside the paper's numbers (markdown, for the README).
 
 mod can;
+mod consumers;
 mod devices;
 mod encode;
+mod graph;
 mod latency;
 mod paper000;
 mod timing;
@@ -26,6 +28,10 @@ pub enum Suite {
     /// decoder, and the ARS408 and Benewake CAN drivers on recorded emulator
     /// traffic, with last frame to encoded cloud.
     Can,
+    /// What watching the graph costs it: the fit latency with no consumer and
+    /// with the dashboard and 0, 1, 3 headless browsers (`--browsers`), with
+    /// each consumer's CPU share.
+    Consumers,
 }
 
 #[derive(Debug, Args)]
@@ -41,9 +47,18 @@ pub struct BenchArgs {
     /// A fast smoke run: 2 configurations x 3 fits, small clouds only.
     #[arg(long)]
     pub quick: bool,
-    /// Seconds per row of the latency table.
+    /// Seconds per row of the latency and consumers tables.
     #[arg(long, default_value_t = 10.0)]
     pub seconds: f64,
+    /// Points per cloud of the scanner (consumers).
+    #[arg(long, default_value_t = 300_000)]
+    pub points: usize,
+    /// Clouds per second of the scanner (consumers).
+    #[arg(long, default_value_t = 30.0)]
+    pub rate: f64,
+    /// Browser counts to measure the dashboard with, comma-separated (consumers).
+    #[arg(long, default_value = "0,1,3")]
+    pub browsers: String,
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {
@@ -52,5 +67,6 @@ pub fn run(args: BenchArgs) -> Result<()> {
         Suite::Latency => latency::run(&args),
         Suite::Devices => devices::run(&args),
         Suite::Can => can::run(&args),
+        Suite::Consumers => consumers::run(&args),
     }
 }
