@@ -1,6 +1,6 @@
 // Keeps N dashboard pages open in one headless Chromium until stdin closes or SIGTERM: the
 // browsers of `shroud bench consumers --browsers`. Prints "open N" on stdout once every page
-// has its hello, then, at exit, one JSON line with the frames each page counted.
+// has its hello, then, at exit, one JSON line on stderr with the frames each page counted.
 //
 //   node tests/browser/open_pages.mjs --url http://127.0.0.1:8080 --count 3
 
@@ -37,7 +37,7 @@ async function main() {
     for (const page of pages) {
       frames.push(await page.evaluate(() => document.getElementById('frames')?.textContent ?? '').catch(() => ''));
     }
-    process.stdout.write(`${JSON.stringify({ pages: count, frames, problems: first.problems })}\n`);
+    process.stderr.write(`${JSON.stringify({ pages: count, frames, problems: first.problems })}\n`);
     await first.browser.close();
     process.exit(EXIT.ok);
   };

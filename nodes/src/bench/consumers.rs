@@ -2,7 +2,10 @@
 //! fit node run at `--points`/`--rate`; the fit latency (each surrogate's
 //! `pipeline_ns`: the scanner's share, the fit node's wait, decode and fit) is
 //! measured with no consumer, then with the dashboard node and 0, 1, 3 real
-//! headless Chromium pages on it (`tests/browser/open_pages.mjs`), with each
+//! headless Chromium pages on it (`tests/browser/open_pages.mjs`, rendering on
+//! this machine's cores), and with 1 and 3 WebSocket readers that take every
+//! frame as a browser does but draw nothing (browsers on another machine,
+//! the usual case: only the node's work stays on the robot), with each
 //! consumer's CPU share, all in one run so that the ratios compare like with
 //! like on a noisy machine.
 
@@ -23,14 +26,22 @@ const SETTLE: Duration = Duration::from_secs(3);
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Consumer {
     Nothing,
+    /// The dashboard with headless Chromium pages on this machine.
     Dashboard { browsers: usize },
+    /// The dashboard with WebSocket readers (browsers elsewhere).
+    DashboardReaders { readers: usize },
 }
 
 impl Consumer {
     fn label(&self) -> String {
         match self {
             Self::Nothing => "none".into(),
-            Self::Dashboard { browsers } => format!("dashboard, {browsers} browser(s)"),
+            Self::Dashboard { browsers } => {
+                format!("dashboard, {browsers} headless Chromium page(s) on this machine")
+            }
+            Self::DashboardReaders { readers } => {
+                format!("dashboard, {readers} WebSocket reader(s) (browsers elsewhere)")
+            }
         }
     }
 }
@@ -85,7 +96,7 @@ async fn measure_all(args: &BenchArgs, browsers: &[usize], seconds: f64) -> Resu
     let (points, rate) = (args.points.to_string(), args.rate.to_string());
     graph.spawn("scanner", "scanner", &["--points", &points, "--rate", &rate, "--stream", "bench"], None)?;
     graph.spawn("fit", "fit", &["--input", "bench", "--grid", "20x20", "--side", "sandwich"], None)?;
-    let mut rows = vec![measure(&graph, &heard, Consumer::Nothing, seconds, None).await?];
+    let mut rows = vec![measure(&heard, Consumer::Nothing, seconds, None).await?];
     let port = free_port()?;
     let listen = format!("127.0.0.1:{port}");
     let dashboard = graph.spawn("dashboard", "dashboard", &["--listen", &listen], None)?;
@@ -95,11 +106,18 @@ async fn measure_all(args: &BenchArgs, browsers: &[usize], seconds: f64) -> Resu
             .transpose()?;
         let consumer = Consumer::Dashboard { browsers: count };
         let pids = (dashboard, pages.as_ref().map(Pages::pid));
-        rows.push(measure(&graph, &heard, consumer, seconds, Some(pids)).await?);
+        rows.push(measure(&heard, consumer, seconds, Some(pids)).await?);
         drop(pages);
     }
+    for &count in browsers.iter().filter(|&&n| n > 0) {
+        let readers = Readers::connect(&format!("ws://{listen}/ws"), count).await?;
+        let consumer = Consumer::DashboardReaders { readers: count };
+        rows.push(measure(&heard, consumer, seconds, Some((dashboard, None))).await?);
+        let frames = readers.stop().await;
+        eprintln!("  {count} reader(s) took {frames} frames");
+    }
     graph.stop("dashboard");
-    rows.push(measure(&graph, &heard, Consumer::Nothing, seconds, None).await?);
+    rows.push(measure(&heard, Consumer::Nothing, seconds, None).await?);
     graph.stop_all();
     Ok(rows)
 }
@@ -140,7 +158,6 @@ async fn listen(
 
 /// Runs one configuration: settles, then measures for `seconds`.
 async fn measure(
-    graph: &BenchGraph,
     heard: &Arc<Mutex<Heard>>,
     consumer: Consumer,
     seconds: f64,
@@ -175,7 +192,6 @@ async fn measure(
         p.quantile(q).unwrap_or(f64::NAN)
     };
     eprintln!("measured {}", consumer.label());
-    let _ = graph;
     Ok(Row {
         consumer,
         surrogates: h.latency_ms.len(),
@@ -227,6 +243,54 @@ impl Drop for Pages {
     fn drop(&mut self) {
         drop(self.0.stdin.take()); // end of input: the script closes the browser
         let _ = self.0.wait();
+    }
+}
+
+/// WebSocket readers on the dashboard: each takes every frame and checks its
+/// layout (as a browser's decoder does) and draws nothing.
+struct Readers {
+    tasks: Vec<tokio::task::JoinHandle<u64>>,
+    stop: Arc<std::sync::atomic::AtomicBool>,
+}
+
+impl Readers {
+    async fn connect(url: &str, count: usize) -> Result<Self> {
+        use futures_util::StreamExt;
+        let stop = Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let mut tasks = Vec::new();
+        for _ in 0..count {
+            let (mut socket, _) = tokio_tungstenite::connect_async(url)
+                .await
+                .with_context(|| format!("cannot connect to {url}"))?;
+            let stop = stop.clone();
+            tasks.push(tokio::spawn(async move {
+                let mut frames = 0u64;
+                while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                    let next = tokio::time::timeout(Duration::from_millis(200), socket.next()).await;
+                    match next {
+                        Ok(Some(Ok(tokio_tungstenite::tungstenite::Message::Binary(bytes)))) => {
+                            if shroud_core::dashboard::DecodedFrame::decode(&bytes).is_ok() {
+                                frames += 1;
+                            }
+                        }
+                        Ok(Some(Ok(_))) | Err(_) => {}
+                        Ok(Some(Err(_)) | None) => break,
+                    }
+                }
+                frames
+            }));
+        }
+        Ok(Self { tasks, stop })
+    }
+
+    /// Stops every reader; the frames they took.
+    async fn stop(self) -> u64 {
+        self.stop.store(true, std::sync::atomic::Ordering::Relaxed);
+        let mut frames = 0;
+        for task in self.tasks {
+            frames += task.await.unwrap_or(0);
+        }
+        frames
     }
 }
 

@@ -32,6 +32,10 @@ pub enum Action {
         /// Surface normal x,y,z to use instead of the estimated one.
         #[arg(long, allow_hyphen_values = true)]
         normal: Option<String>,
+        /// Which of the blend node's parts to paste (its `blend.parts`
+        /// status label lists them); default: the one it holds.
+        #[arg(long)]
+        part: Option<String>,
     },
     /// Adjust the dropped child: slide along the normal, spin, tilt.
     Adjust {
@@ -59,11 +63,18 @@ pub enum Action {
         /// Drops per second.
         #[arg(long, default_value_t = 10.0)]
         rate: f64,
+        /// Which part to drag (as for drop).
+        #[arg(long)]
+        part: Option<String>,
     },
 }
 
 pub fn run(args: BlendCmdArgs) -> Result<()> {
     let commands = commands(&args.action)?;
+    let part = match &args.action {
+        Action::Drop { part, .. } | Action::Drag { part, .. } => part.clone(),
+        _ => None,
+    };
     let period = match &args.action {
         Action::Drag { rate, .. } => {
             anyhow::ensure!(
@@ -89,8 +100,13 @@ pub fn run(args: BlendCmdArgs) -> Result<()> {
             let publisher = topic_publisher(&session, key.clone(), TopicKind::Blend)?;
             wait_for_blender(&publisher, &key).await;
             for (sequence, command) in commands.iter().enumerate() {
-                let msg = BlendCommandMessage::new(unix_ns(), sequence as u64, command);
-                msg.command()?; // refuses NaN and infinities before anything is sent
+                let mut msg = BlendCommandMessage::new(unix_ns(), sequence as u64, command);
+                if matches!(command, BlendCommand::Drop { .. }) {
+                    msg.part = part.clone();
+                }
+                // Refuses NaN, infinities and bad part names before anything is sent.
+                msg.command()?;
+                msg.check_part()?;
                 publisher
                     .put(msg.to_bytes()?)
                     .await
@@ -122,7 +138,7 @@ async fn wait_for_blender(publisher: &zenoh::pubsub::Publisher<'_>, key: &str) {
 
 fn commands(action: &Action) -> Result<Vec<BlendCommand>> {
     Ok(match action {
-        Action::Drop { at, normal } => vec![BlendCommand::Drop {
+        Action::Drop { at, normal, .. } => vec![BlendCommand::Drop {
             at: DVec3::from(parse::numbers::<3>(at, "at")?),
             normal: normal
                 .as_deref()
