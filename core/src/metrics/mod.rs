@@ -6,10 +6,12 @@ mod allocation;
 mod node_health;
 mod percentiles;
 mod rate;
+mod sequence_gaps;
 mod summary;
 
 pub use allocation::{is_counting, live_bytes, peak_bytes, reset_peak, CountingAllocator};
 pub use node_health::{NodeHealth, NodeRow, NodeState};
 pub use percentiles::{LatencySummary, Percentiles};
 pub use rate::RateMeter;
+pub use sequence_gaps::SequenceGaps;
 pub use summary::GraphSummary;

@@ -27,9 +27,13 @@ const SETTLE: Duration = Duration::from_secs(3);
 enum Consumer {
     Nothing,
     /// The dashboard with headless Chromium pages on this machine.
-    Dashboard { browsers: usize },
+    Dashboard {
+        browsers: usize,
+    },
     /// The dashboard with WebSocket readers (browsers elsewhere).
-    DashboardReaders { readers: usize },
+    DashboardReaders {
+        readers: usize,
+    },
 }
 
 impl Consumer {
@@ -82,7 +86,10 @@ fn parse_counts(text: &str) -> Result<Vec<usize>> {
     text.split(',')
         .filter(|s| !s.trim().is_empty())
         .map(|s| {
-            let n: usize = s.trim().parse().with_context(|| format!("--browsers: {s:?} is not a count"))?;
+            let n: usize = s
+                .trim()
+                .parse()
+                .with_context(|| format!("--browsers: {s:?} is not a count"))?;
             anyhow::ensure!(n <= 16, "--browsers: at most 16 pages at once");
             Ok(n)
         })
@@ -94,8 +101,18 @@ async fn measure_all(args: &BenchArgs, browsers: &[usize], seconds: f64) -> Resu
     let heard = Arc::new(Mutex::new(Heard::default()));
     let _subscribers = listen(&graph, &heard).await?;
     let (points, rate) = (args.points.to_string(), args.rate.to_string());
-    graph.spawn("scanner", "scanner", &["--points", &points, "--rate", &rate, "--stream", "bench"], None)?;
-    graph.spawn("fit", "fit", &["--input", "bench", "--grid", "20x20", "--side", "sandwich"], None)?;
+    graph.spawn(
+        "scanner",
+        "scanner",
+        &["--points", &points, "--rate", &rate, "--stream", "bench"],
+        None,
+    )?;
+    graph.spawn(
+        "fit",
+        "fit",
+        &["--input", "bench", "--grid", "20x20", "--side", "sandwich"],
+        None,
+    )?;
     let mut rows = vec![measure(&heard, Consumer::Nothing, seconds, None).await?];
     let port = free_port()?;
     let listen = format!("127.0.0.1:{port}");
@@ -147,8 +164,9 @@ async fn listen(
         .declare_subscriber(format!("shroud/{ns}/status/fit"))
         .callback(move |sample| {
             if let Ok(s) = NodeStatusMessage::from_bytes(&sample.payload().to_bytes()) {
-                sink.lock().unwrap_or_else(|p| p.into_inner()).dropped_backlog =
-                    s.counter("dropped_backlog");
+                sink.lock()
+                    .unwrap_or_else(|p| p.into_inner())
+                    .dropped_backlog = s.counter("dropped_backlog");
             }
         })
         .await
@@ -176,15 +194,17 @@ async fn measure(
     let after = pids.map(|(node, pages)| (cpu(node), pages.map(cpu)));
     let share = |b: f64, a: f64| 100.0 * (a - b) / seconds;
     let (node_cpu, browser_cpu) = match (before, after) {
-        (Some((nb, pb)), Some((na, pa))) => (
-            Some(share(nb, na)),
-            pb.zip(pa).map(|(b, a)| share(b, a)),
-        ),
+        (Some((nb, pb)), Some((na, pa))) => {
+            (Some(share(nb, na)), pb.zip(pa).map(|(b, a)| share(b, a)))
+        }
         _ => (None, None),
     };
     let h = heard.lock().unwrap_or_else(|p| p.into_inner());
     if h.latency_ms.is_empty() {
-        bail!("no surrogate arrived while measuring {}: is the fit node running?", consumer.label());
+        bail!(
+            "no surrogate arrived while measuring {}: is the fit node running?",
+            consumer.label()
+        );
     }
     let quantile = |values: &[f64], q: f64| {
         let mut p = Percentiles::new(values.len());
@@ -230,7 +250,10 @@ impl Pages {
         let stdout = child.stdout.take().context("no stdout")?;
         let mut line = String::new();
         BufReader::new(stdout).read_line(&mut line)?;
-        anyhow::ensure!(line.trim() == format!("open {count}"), "the browsers did not open: {line:?}");
+        anyhow::ensure!(
+            line.trim() == format!("open {count}"),
+            "the browsers did not open: {line:?}"
+        );
         Ok(Self(child))
     }
 
@@ -266,7 +289,8 @@ impl Readers {
             tasks.push(tokio::spawn(async move {
                 let mut frames = 0u64;
                 while !stop.load(std::sync::atomic::Ordering::Relaxed) {
-                    let next = tokio::time::timeout(Duration::from_millis(200), socket.next()).await;
+                    let next =
+                        tokio::time::timeout(Duration::from_millis(200), socket.next()).await;
                     match next {
                         Ok(Some(Ok(tokio_tungstenite::tungstenite::Message::Binary(bytes)))) => {
                             if shroud_core::dashboard::DecodedFrame::decode(&bytes).is_ok() {

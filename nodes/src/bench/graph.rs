@@ -46,7 +46,13 @@ impl BenchGraph {
 
     /// Starts `shroud node <kind> --name <name> <args>` wired to the hub; its
     /// standard error goes to `log` (a file) when given, else nowhere.
-    pub fn spawn(&mut self, name: &str, kind: &str, args: &[&str], log: Option<&std::path::Path>) -> Result<u32> {
+    pub fn spawn(
+        &mut self,
+        name: &str,
+        kind: &str,
+        args: &[&str],
+        log: Option<&std::path::Path>,
+    ) -> Result<u32> {
         let exe = std::env::current_exe().context("cannot find the shroud executable")?;
         let mut cmd = Command::new(exe);
         cmd.args(["--log", "warn", "node", kind, "--name", name])
@@ -172,7 +178,8 @@ mod tests {
 
     #[test]
     fn stat_lines_with_odd_names_parse() {
-        let line = "4242 (a (b) c) S 17 4242 4242 0 -1 4194560 100 0 0 0 250 50 0 0 20 0 1 0 100 1000 10";
+        let line =
+            "4242 (a (b) c) S 17 4242 4242 0 -1 4194560 100 0 0 0 250 50 0 0 20 0 1 0 100 1000 10";
         assert_eq!(parse_stat(line), Some((17, 300)));
         assert_eq!(parse_stat("garbage"), None);
         assert!(tree_cpu_seconds(std::process::id()) >= 0.0);

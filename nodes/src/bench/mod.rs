@@ -8,6 +8,7 @@ mod encode;
 mod graph;
 mod latency;
 mod paper000;
+mod soak;
 mod timing;
 
 pub use timing::{median, timed};
@@ -32,6 +33,9 @@ pub enum Suite {
     /// with the dashboard and 0, 1, 3 headless browsers (`--browsers`), with
     /// each consumer's CPU share.
     Consumers,
+    /// The demo graph for `--minutes`: memory, CPU, latency, drops and
+    /// shared memory per window, memory slopes, cloud accounting (`--check`).
+    Soak,
 }
 
 #[derive(Debug, Args)]
@@ -59,6 +63,19 @@ pub struct BenchArgs {
     /// Browser counts to measure the dashboard with, comma-separated (consumers).
     #[arg(long, default_value = "0,1,3")]
     pub browsers: String,
+    /// Minutes the soak runs.
+    #[arg(long, default_value_t = 10.0)]
+    pub minutes: f64,
+    /// Seconds per line of the soak's table.
+    #[arg(long, default_value_t = 60.0)]
+    pub window: f64,
+    /// Soak: fail when a cloud is unaccounted for or a node's memory grew
+    /// by more than --max-growth-mb between the first and the last window.
+    #[arg(long)]
+    pub check: bool,
+    /// Soak: the memory growth --check allows per node, MB.
+    #[arg(long, default_value_t = 16.0)]
+    pub max_growth_mb: f64,
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {
@@ -68,5 +85,6 @@ pub fn run(args: BenchArgs) -> Result<()> {
         Suite::Devices => devices::run(&args),
         Suite::Can => can::run(&args),
         Suite::Consumers => consumers::run(&args),
+        Suite::Soak => soak::run(&args),
     }
 }

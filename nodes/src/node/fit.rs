@@ -8,7 +8,7 @@ use crate::transport::{unix_ns, Mailbox};
 use anyhow::Result;
 use clap::Args;
 use shroud_core::message::{CloudView, MessageError, SurrogateMessage, TopicKind};
-use shroud_core::metrics::Percentiles;
+use shroud_core::metrics::{Percentiles, SequenceGaps};
 use shroud_core::surrogate::{FitError, Sides, SurrogateFitter};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -77,6 +77,7 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
     let mut fit_ms = Percentiles::new(256);
     let mut latency_ms = Percentiles::new(256);
     let mut copied = Vec::new();
+    let mut gaps = SequenceGaps::default();
     while !ctx.stopping() {
         ctx.metrics
             .set_counter("dropped_backlog", mailbox.dropped());
@@ -95,6 +96,11 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
                 continue;
             }
         };
+        // Clouds this node never decoded: dropped by its backlog policy
+        // (`dropped_backlog`) or lost before it; the difference is the loss
+        // on the way.
+        gaps.observe(&msg.source, msg.sequence);
+        ctx.metrics.set_counter("sequence_gaps", gaps.missing());
         let points = match points_of(&msg, &mut copied) {
             Ok(points) => points,
             Err(e) => {

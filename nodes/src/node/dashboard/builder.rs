@@ -138,19 +138,7 @@ impl FrameBuilder {
     /// A new browser: the hello, then the latest of everything.
     fn greet(&mut self) {
         self.hub.broadcast("hello", self.shared_hello());
-        let latest: Vec<(TopicKey, Arrival)> = self
-            .latest
-            .values()
-            .map(|(k, a)| {
-                (
-                    k.clone(),
-                    Arrival {
-                        payload: a.payload.clone(),
-                        received_ns: a.received_ns,
-                    },
-                )
-            })
-            .collect();
+        let latest: Vec<(TopicKey, Arrival)> = self.latest.values().cloned().collect();
         for (key, arrival) in latest {
             self.draw(&key, &arrival);
         }

@@ -137,6 +137,7 @@ impl Hub {
 }
 
 /// A received sample, kept until the frame builder takes it.
+#[derive(Clone)]
 pub struct Arrival {
     pub payload: ZBytes,
     /// This host's monotonic clock at receipt.
