@@ -4,28 +4,13 @@
 
 mod common;
 
-use common::{assert_all_gone, free_port, hub, wiring, Proc};
+use common::{assert_all_gone, free_port, hub, wait_sources, wiring, Proc};
 use shroud_core::blend::BlendCommand;
-use shroud_core::message::{BlendCommandMessage, CloudMessage, NodeStatusMessage};
+use shroud_core::message::{BlendCommandMessage, NodeStatusMessage};
 use std::time::{Duration, Instant};
 use zenoh::Wait;
 
 const LONG: Duration = Duration::from_secs(90);
-
-/// Points per source (parent, child, transition) of a published model.
-fn sources(sample: &zenoh::sample::Sample) -> [usize; 3] {
-    let msg = CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
-    let codes = msg
-        .intensity_array()
-        .unwrap()
-        .expect("sources as intensity");
-    assert_eq!(codes.len(), msg.point_array().unwrap().len());
-    let mut count = [0; 3];
-    for c in codes {
-        count[c as usize] += 1;
-    }
-    count
-}
 
 /// Waits (within `LONG`) for a model whose source counts satisfy `wanted`: the
 /// node also republishes its unchanged model every second.
@@ -35,21 +20,12 @@ fn wait_model(
     node: &Proc,
     wanted: impl Fn([usize; 3]) -> bool,
 ) -> [usize; 3] {
-    let deadline = Instant::now() + LONG;
-    let mut last = None;
-    while Instant::now() < deadline {
-        if let Ok(Some(sample)) = models.recv_timeout(Duration::from_millis(500)) {
-            let counts = sources(&sample);
-            if wanted(counts) {
-                return counts;
-            }
-            last = Some(counts);
-        }
-    }
-    panic!(
-        "no model as wanted after {what} (last {last:?}); node:\n{}",
-        node.output()
-    );
+    wait_sources(models, LONG, wanted).unwrap_or_else(|last| {
+        panic!(
+            "no model as wanted after {what} (last {last:?}); node:\n{}",
+            node.output()
+        )
+    })
 }
 
 #[test]

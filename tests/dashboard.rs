@@ -9,13 +9,34 @@
 mod common;
 
 use common::browser::{browser_available, check, node_dies, out_dir};
-use common::{hub_on_free_port, wiring, Proc};
-use shroud_core::message::CloudMessage;
-use std::time::{Duration, Instant};
+use common::{hub_on_free_port, wait_sources, wiring, Proc};
+use std::time::Duration;
 use zenoh::Wait;
 
 const START: Duration = Duration::from_secs(60);
 const ARM_FILE: &str = "launch/arms/demo_arm.toml";
+
+/// `shroud node <args...>` on the test's hub.
+fn node(args: &[&str], w: &[&str]) -> Proc {
+    Proc::start(&[args, w].concat())
+}
+
+/// The guard over `stream` (with `extra` options) and the simulated arm at
+/// `rate` joint states a second, both with the demo's arm file.
+fn guard_and_arm(stream: &str, extra: &[&str], rate: &str, w: &[&str]) -> (Proc, Proc) {
+    let guard = [
+        "node",
+        "guard",
+        "--arm-file",
+        ARM_FILE,
+        "--surrogate",
+        stream,
+        "--unobserved",
+        "ignore",
+    ];
+    let arm = ["node", "arm", "--arm-file", ARM_FILE, "--rate", rate];
+    (node(&[&guard[..], extra].concat(), w), node(&arm, w))
+}
 
 /// Starts the dashboard on a free port and returns it with its URL.
 fn dashboard(w: &[&str]) -> (Proc, String) {
@@ -55,59 +76,21 @@ fn the_page_shows_the_demo_and_a_killed_node() {
     }
     let (endpoint, _hub) = hub_on_free_port();
     let w = wiring(&endpoint, "e2e-dash");
-    let _scanner = Proc::start(
+    let scene = "launch/scenes/demo_spheres.json";
+    let _scanner = node(
         &[
-            &[
-                "node",
-                "scanner",
-                "--config",
-                "launch/scenes/demo_spheres.json",
-                "--rate",
-                "10",
-                "--stream",
-                "spheres",
-            ][..],
-            &w,
-        ]
-        .concat(),
+            "node", "scanner", "--config", scene, "--rate", "10", "--stream", "spheres",
+        ],
+        &w,
     );
-    let fit = Proc::start(
+    let fit = node(
         &[
-            &[
-                "node", "fit", "--name", "fit", "--input", "spheres", "--grid", "16x16", "--side",
-                "sandwich",
-            ][..],
-            &w,
-        ]
-        .concat(),
+            "node", "fit", "--name", "fit", "--input", "spheres", "--grid", "16x16",
+        ],
+        &w,
     );
-    let _guard = Proc::start(
-        &[
-            &[
-                "node",
-                "guard",
-                "--arm-file",
-                ARM_FILE,
-                "--surrogate",
-                "spheres",
-                "--max-obstacle-speed",
-                "1.3",
-                "--max-age",
-                "0.5",
-                "--unobserved",
-                "ignore",
-            ][..],
-            &w,
-        ]
-        .concat(),
-    );
-    let _arm = Proc::start(
-        &[
-            &["node", "arm", "--arm-file", ARM_FILE, "--rate", "50"][..],
-            &w,
-        ]
-        .concat(),
-    );
+    let speed = ["--max-obstacle-speed", "1.3", "--max-age", "0.5"];
+    let _guard_and_arm = guard_and_arm("spheres", &speed, "50", &w);
     let (_dashboard, url) = dashboard(&w);
     let out = out_dir("demo");
     check(&url, &out, "loads", &[]);
@@ -144,105 +127,49 @@ fn a_dragged_part_is_blended_and_a_stop_shows_the_banner() {
         .declare_subscriber(format!("shroud/{ns}/cloud/blend"))
         .wait()
         .unwrap();
-    let _scanner = Proc::start(
-        &[
-            &[
-                "node",
-                "scanner",
-                "--scene",
-                "table-top",
-                "--points",
-                "20000",
-                "--rate",
-                "2",
-                "--stream",
-                "table",
-                "--time-scale",
-                "0",
-            ][..],
-            &w,
-        ]
-        .concat(),
+    let table = [
+        "--scene",
+        "table-top",
+        "--points",
+        "20000",
+        "--rate",
+        "2",
+        "--time-scale",
+        "0",
+    ];
+    let _scanner = node(
+        &[&["node", "scanner", "--stream", "table"][..], &table].concat(),
+        &w,
     );
-    let _blend = Proc::start(
-        &[
-            &[
-                "node",
-                "blend",
-                "--parent-stream",
-                "table",
-                "--child-part",
-                "hemisphere",
-                "--child-part",
-                "half-cylinder",
-                "--part-size",
-                "0.3",
-                "--stream",
-                "blend",
-                "--centres",
-                "400",
-            ][..],
-            &w,
-        ]
-        .concat(),
-    );
-    let _fit = Proc::start(
-        &[
-            &["node", "fit", "--input", "table", "--grid", "16x16"][..],
-            &w,
-        ]
-        .concat(),
-    );
-    let _guard = Proc::start(
-        &[
-            &[
-                "node",
-                "guard",
-                "--arm-file",
-                ARM_FILE,
-                "--surrogate",
-                "table",
-                "--stop-distance",
-                "5",
-                "--unobserved",
-                "ignore",
-            ][..],
-            &w,
-        ]
-        .concat(),
-    );
-    let _arm = Proc::start(
-        &[
-            &["node", "arm", "--arm-file", ARM_FILE, "--rate", "20"][..],
-            &w,
-        ]
-        .concat(),
-    );
+    let parts = [
+        "--child-part",
+        "hemisphere",
+        "--child-part",
+        "half-cylinder",
+        "--part-size",
+        "0.3",
+    ];
+    let blend = [
+        "node",
+        "blend",
+        "--parent-stream",
+        "table",
+        "--stream",
+        "blend",
+        "--centres",
+        "400",
+    ];
+    let _blend = node(&[&blend[..], &parts].concat(), &w);
+    let _fit = node(&["node", "fit", "--input", "table", "--grid", "16x16"], &w);
+    let _guard_and_arm = guard_and_arm("table", &["--stop-distance", "5"], "20", &w);
     let (_dashboard, url) = dashboard(&w);
     let out = out_dir("blend");
     let dragged = check(&url, &out, "drag_part", &[]);
     eprintln!("drag: {dragged}");
     // What the blend node published, seen on zenoh: the composed cloud.
-    let deadline = Instant::now() + START;
-    let transition = loop {
-        assert!(
-            Instant::now() < deadline,
-            "no composed cloud with transition points"
-        );
-        let Ok(Some(sample)) = models.recv_timeout(Duration::from_millis(500)) else {
-            continue;
-        };
-        let msg = CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
-        let sources = msg
-            .intensity_array()
-            .unwrap()
-            .expect("sources as intensity");
-        let transition = sources.iter().filter(|&&s| s == 2.0).count();
-        if transition > 0 {
-            break transition;
-        }
-    };
-    eprintln!("transition points: {transition}");
+    let counts = wait_sources(&models, START, |[_, _, transition]| transition > 0)
+        .expect("no composed cloud with transition points");
+    eprintln!("sources (parent, part, transition): {counts:?}");
     let banner = check(
         &url,
         &out,

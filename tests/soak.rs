@@ -11,13 +11,30 @@ fn a_thirty_second_soak_accounts_for_every_cloud_and_memory_stays_flat() {
     let out = Command::new(env!("CARGO_BIN_EXE_shroud"))
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .args(["bench", "soak", "--points", "300000", "--rate", "30"])
-        .args(["--minutes", "0.5", "--window", "10", "--check", "--max-growth-mb", "16"])
+        .args([
+            "--minutes",
+            "0.5",
+            "--window",
+            "10",
+            "--check",
+            "--max-growth-mb",
+            "16",
+        ])
         .output()
         .expect("the shroud binary runs");
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
     eprintln!("{stdout}");
-    assert!(out.status.success(), "soak check failed:\n{stdout}\n{stderr}");
+    assert!(
+        out.status.success(),
+        "soak check failed:\n{stdout}\n{stderr}"
+    );
     assert!(stdout.contains("check passed"), "{stdout}");
-    assert_eq!(stdout.matches("\n| 10 |").count() + stdout.matches("\n| 20 |").count() + stdout.matches("\n| 30 |").count(), 3, "three windows: {stdout}");
+    assert_eq!(
+        stdout.matches("\n| 10 |").count()
+            + stdout.matches("\n| 20 |").count()
+            + stdout.matches("\n| 30 |").count(),
+        3,
+        "three windows: {stdout}"
+    );
 }

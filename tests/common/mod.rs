@@ -302,3 +302,40 @@ pub fn joint_spread_if_any(joints: &Inbox, window: Duration) -> Option<f64> {
     };
     (seen.len() >= 3).then(|| seen.windows(2).map(step).fold(0.0, f64::max))
 }
+
+/// Points per source (parent, part, transition) of a blend node's model: its
+/// intensity is each point's source code.
+pub fn blend_sources(sample: &zenoh::sample::Sample) -> [usize; 3] {
+    let msg = shroud_core::message::CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+    let codes = msg
+        .intensity_array()
+        .unwrap()
+        .expect("sources as intensity");
+    assert_eq!(codes.len(), msg.point_array().unwrap().len());
+    let mut count = [0; 3];
+    for c in codes {
+        count[c as usize] += 1;
+    }
+    count
+}
+
+/// Waits up to `timeout` for a blend model whose source counts satisfy
+/// `wanted`; the counts, or the last ones seen.
+pub fn wait_sources(
+    models: &zenoh::pubsub::Subscriber<zenoh::handlers::FifoChannelHandler<zenoh::sample::Sample>>,
+    timeout: Duration,
+    wanted: impl Fn([usize; 3]) -> bool,
+) -> Result<[usize; 3], Option<[usize; 3]>> {
+    let deadline = Instant::now() + timeout;
+    let mut last = None;
+    while Instant::now() < deadline {
+        if let Ok(Some(sample)) = models.recv_timeout(Duration::from_millis(500)) {
+            let counts = blend_sources(&sample);
+            if wanted(counts) {
+                return Ok(counts);
+            }
+            last = Some(counts);
+        }
+    }
+    Err(last)
+}

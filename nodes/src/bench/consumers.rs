@@ -12,7 +12,6 @@
 use super::graph::{tree_cpu_seconds, BenchGraph};
 use super::BenchArgs;
 use anyhow::{bail, Context, Result};
-use shroud_core::message::{NodeStatusMessage, SurrogateMessage};
 use shroud_core::metrics::Percentiles;
 use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};
@@ -144,33 +143,22 @@ async fn listen(
     graph: &BenchGraph,
     heard: &Arc<Mutex<Heard>>,
 ) -> Result<Vec<zenoh::pubsub::Subscriber<()>>> {
-    let ns = &graph.namespace;
     let sink = heard.clone();
     let surrogates = graph
-        .session
-        .declare_subscriber(format!("shroud/{ns}/surrogate/bench"))
-        .callback(move |sample| {
-            if let Ok((m, _)) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()) {
-                let mut h = sink.lock().unwrap_or_else(|p| p.into_inner());
-                h.latency_ms.push(m.pipeline_ns as f64 / 1e6);
-                h.fit_ms.push(m.fit_ns as f64 / 1e6);
-            }
+        .on_surrogates("bench", move |m| {
+            let mut h = sink.lock().unwrap_or_else(|p| p.into_inner());
+            h.latency_ms.push(m.pipeline_ns as f64 / 1e6);
+            h.fit_ms.push(m.fit_ns as f64 / 1e6);
         })
-        .await
-        .map_err(|e| anyhow::anyhow!("subscribe surrogates: {e}"))?;
+        .await?;
     let sink = heard.clone();
     let status = graph
-        .session
-        .declare_subscriber(format!("shroud/{ns}/status/fit"))
-        .callback(move |sample| {
-            if let Ok(s) = NodeStatusMessage::from_bytes(&sample.payload().to_bytes()) {
-                sink.lock()
-                    .unwrap_or_else(|p| p.into_inner())
-                    .dropped_backlog = s.counter("dropped_backlog");
-            }
+        .on_status("fit", move |s| {
+            sink.lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .dropped_backlog = s.counter("dropped_backlog");
         })
-        .await
-        .map_err(|e| anyhow::anyhow!("subscribe status: {e}"))?;
+        .await?;
     Ok(vec![surrogates, status])
 }
 

@@ -4,6 +4,7 @@
 
 use crate::transport::{die_with_parent, OnOff, ZenohArgs};
 use anyhow::{Context, Result};
+use shroud_core::message::{NodeStatusMessage, SurrogateMessage, TopicKind};
 use std::collections::BTreeMap;
 use std::process::{Child, Command, Stdio};
 
@@ -73,6 +74,46 @@ impl BenchGraph {
         let pid = child.id();
         self.nodes.insert(name.to_string(), child);
         Ok(pid)
+    }
+
+    /// Calls `f` with every valid message of `kind` on stream `name` (`*`: all).
+    async fn on<M: 'static>(
+        &self,
+        kind: TopicKind,
+        name: &str,
+        decode: fn(&[u8]) -> Option<M>,
+        f: impl Fn(M) + Send + Sync + 'static,
+    ) -> Result<zenoh::pubsub::Subscriber<()>> {
+        let key = format!("shroud/{}/{kind}/{name}", self.namespace);
+        self.session
+            .declare_subscriber(&key)
+            .callback(move |sample| {
+                if let Some(m) = decode(&sample.payload().to_bytes()) {
+                    f(m);
+                }
+            })
+            .await
+            .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))
+    }
+
+    /// Every certified surrogate of `stream`.
+    pub async fn on_surrogates(
+        &self,
+        stream: &str,
+        f: impl Fn(SurrogateMessage) + Send + Sync + 'static,
+    ) -> Result<zenoh::pubsub::Subscriber<()>> {
+        let decode = |b: &[u8]| SurrogateMessage::from_bytes(b).ok().map(|(m, _)| m);
+        self.on(TopicKind::Surrogate, stream, decode, f).await
+    }
+
+    /// Every status message of node `name` (`*`: every node).
+    pub async fn on_status(
+        &self,
+        name: &str,
+        f: impl Fn(NodeStatusMessage) + Send + Sync + 'static,
+    ) -> Result<zenoh::pubsub::Subscriber<()>> {
+        let decode = |b: &[u8]| NodeStatusMessage::from_bytes(b).ok();
+        self.on(TopicKind::Status, name, decode, f).await
     }
 
     pub fn pid(&self, name: &str) -> Option<u32> {

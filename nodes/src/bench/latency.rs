@@ -2,15 +2,13 @@
 //! published to its surrogate received, through a real `shroud node fit` process
 //! and real zenoh sessions, at several cloud sizes and rates.
 
+use super::graph::BenchGraph;
 use super::BenchArgs;
-use crate::transport::{
-    die_with_parent, topic_publisher, unix_ns, OnOff, PayloadWriter, ZenohArgs,
-};
-use anyhow::{Context, Result};
-use shroud_core::message::{CloudView, SurrogateMessage, TopicKind};
+use crate::transport::{topic_publisher, unix_ns, PayloadWriter};
+use anyhow::Result;
+use shroud_core::message::{CloudView, TopicKind};
 use shroud_core::metrics::Percentiles;
 use shroud_sim::MovingSpheres;
-use std::process::{Child, Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -57,40 +55,21 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 }
 
 async fn measure(points: usize, rate: f64, seconds: f64) -> Result<Row> {
-    let namespace = format!("bench-{}", std::process::id());
-    let hub = ZenohArgs {
-        namespace: namespace.clone(),
-        mode: "peer".into(),
-        connect: vec![],
-        listen: vec!["tcp/127.0.0.1:0".into()],
-        multicast: Some(OnOff::Off),
-        shm: OnOff::On,
-        zenoh_config: None,
-    };
-    let session = hub.open().await?;
-    let endpoint = session
-        .info()
-        .locators()
-        .await
-        .first()
-        .map(|l| l.to_string())
-        .context("no local endpoint")?;
-    let mut fit = FitProcess::start(&endpoint, &namespace)?;
+    let mut graph = BenchGraph::start("latency").await?;
+    graph.spawn("fit", "fit", &["--input", "bench"], None)?;
     let received = Arc::new(Mutex::new(Received::default()));
     let sink = received.clone();
-    let _sub = session
-        .declare_subscriber(format!("shroud/{namespace}/surrogate/bench"))
-        .callback(move |sample| {
+    let _sub = graph
+        .on_surrogates("bench", move |m| {
             let now = unix_ns();
-            if let Ok((m, _)) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()) {
-                let mut r = sink.lock().unwrap_or_else(|p| p.into_inner());
-                r.latency_ms
-                    .push(now.saturating_sub(m.source_stamp_ns) as f64 / 1e6);
-                r.fit_ms.push(m.fit_ns as f64 / 1e6);
-            }
+            let mut r = sink.lock().unwrap_or_else(|p| p.into_inner());
+            r.latency_ms
+                .push(now.saturating_sub(m.source_stamp_ns) as f64 / 1e6);
+            r.fit_ms.push(m.fit_ns as f64 / 1e6);
         })
-        .await
-        .map_err(|e| anyhow::anyhow!("subscribe: {e}"))?;
+        .await?;
+    let namespace = graph.namespace.clone();
+    let session = graph.session.clone();
     let key = format!("shroud/{namespace}/cloud/bench");
     let publisher = topic_publisher(&session, key, TopicKind::Cloud)?;
     let writer = PayloadWriter::new(true, 4 * (points * 12 + 4096));
@@ -121,7 +100,7 @@ async fn measure(points: usize, rate: f64, seconds: f64) -> Result<Row> {
         tokio::time::sleep_until(next.into()).await;
     }
     tokio::time::sleep(Duration::from_millis(500)).await;
-    fit.stop();
+    graph.stop("fit");
     let r = std::mem::take(&mut *received.lock().unwrap_or_else(|p| p.into_inner()));
     let _ = session.close().await;
     let mut lat = Percentiles::new(r.latency_ms.len().max(1));
@@ -172,48 +151,6 @@ async fn wait_until_fitting(
         tokio::time::sleep(Duration::from_millis(100)).await;
     }
     Ok(())
-}
-
-/// The fit node under test, as a child process.
-struct FitProcess(Child);
-
-impl FitProcess {
-    fn start(endpoint: &str, namespace: &str) -> Result<Self> {
-        let exe = std::env::current_exe()?;
-        let mut cmd = Command::new(exe);
-        cmd.args([
-            "node",
-            "fit",
-            "--input",
-            "bench",
-            "--connect",
-            endpoint,
-            "--multicast",
-            "off",
-        ])
-        .args(["--namespace", namespace])
-        .stdin(Stdio::null())
-        .stdout(Stdio::null());
-        // A bench killed outright must not leave its fit node running.
-        die_with_parent(&mut cmd);
-        let child = cmd.spawn().context("cannot start the fit node")?;
-        Ok(Self(child))
-    }
-
-    fn stop(&mut self) {
-        // SAFETY: kill(2) on our own child.
-        unsafe {
-            libc::kill(self.0.id() as libc::pid_t, libc::SIGTERM);
-        }
-        let _ = self.0.wait();
-    }
-}
-
-impl Drop for FitProcess {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
 }
 
 fn print_table(rows: &[Row], seconds: f64) {

@@ -10,7 +10,7 @@
 use super::graph::{rss_bytes, tree_cpu_seconds, BenchGraph};
 use super::BenchArgs;
 use anyhow::{bail, Result};
-use shroud_core::message::{NodeStatusMessage, SurrogateMessage};
+use shroud_core::message::NodeStatusMessage;
 use shroud_core::metrics::Percentiles;
 use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
@@ -143,31 +143,20 @@ async fn listen(
     graph: &BenchGraph,
     heard: &Arc<Mutex<Heard>>,
 ) -> Result<Vec<zenoh::pubsub::Subscriber<()>>> {
-    let ns = &graph.namespace;
     let sink = heard.clone();
     let surrogates = graph
-        .session
-        .declare_subscriber(format!("shroud/{ns}/surrogate/soak"))
-        .callback(move |sample| {
-            if let Ok((m, _)) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()) {
-                let mut h = sink.lock().unwrap_or_else(|p| p.into_inner());
-                h.latency_ms.push(m.pipeline_ns as f64 / 1e6);
-            }
+        .on_surrogates("soak", move |m| {
+            let mut h = sink.lock().unwrap_or_else(|p| p.into_inner());
+            h.latency_ms.push(m.pipeline_ns as f64 / 1e6);
         })
-        .await
-        .map_err(|e| anyhow::anyhow!("subscribe surrogates: {e}"))?;
+        .await?;
     let sink = heard.clone();
     let status = graph
-        .session
-        .declare_subscriber(format!("shroud/{ns}/status/*"))
-        .callback(move |sample| {
-            if let Ok(s) = NodeStatusMessage::from_bytes(&sample.payload().to_bytes()) {
-                let mut h = sink.lock().unwrap_or_else(|p| p.into_inner());
-                h.status.insert(s.node.clone(), s);
-            }
+        .on_status("*", move |s| {
+            let mut h = sink.lock().unwrap_or_else(|p| p.into_inner());
+            h.status.insert(s.node.clone(), s);
         })
-        .await
-        .map_err(|e| anyhow::anyhow!("subscribe status: {e}"))?;
+        .await?;
     Ok(vec![surrogates, status])
 }
 
