@@ -27,6 +27,13 @@ fn s(p: &Path) -> &str {
     p.to_str().expect("utf-8 temp path")
 }
 
+/// Writes `bytes` to the file `name` in `dir`.
+fn write_file(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
+    let p = path(dir, name);
+    std::fs::write(&p, bytes).unwrap();
+    p
+}
+
 /// Fails with both streams shown unless the command succeeded.
 fn ok(out: Output) -> String {
     let (stdout, stderr) = text(&out);
@@ -146,11 +153,7 @@ fn binary_surrogate_and_xyz_input_and_query() {
 #[test]
 fn bad_clouds_get_clear_errors() {
     let dir = tempfile::tempdir().unwrap();
-    let write = |name: &str, bytes: &[u8]| {
-        let p = path(dir.path(), name);
-        std::fs::write(&p, bytes).unwrap();
-        p
-    };
+    let write = |name: &str, bytes: &[u8]| write_file(dir.path(), name, bytes);
     fails_with(shroud(&["fit", s(&write("empty.xyz", b""))]), "empty");
     fails_with(
         shroud(&["fit", s(&write("nan.xyz", b"0 0 0\n1 nan 2\n3 4 5\n"))]),
@@ -189,6 +192,115 @@ fn bad_clouds_get_clear_errors() {
     fails_with(
         shroud(&["fit", s(&path(dir.path(), "missing.ply"))]),
         "cannot read",
+    );
+}
+
+#[test]
+fn pcd_clouds_are_read_and_written() {
+    let dir = tempfile::tempdir().unwrap();
+    // A PCL-style organised cloud (4 x 3, binary, `_` padding) with 3 NaN points.
+    let fixture = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/core/tests/data/pcd/organised_nan_binary.pcd"
+    );
+    let out = shroud(&["fit", fixture, "--grid", "3x3"]);
+    let (stdout, stderr) = text(&out);
+    assert!(out.status.success(), "{stdout}\n{stderr}");
+    assert!(
+        stdout.contains("9 points checked, 0 violations"),
+        "{stdout}"
+    );
+    assert!(
+        stderr.contains("left out 3 invalid points (NaN coordinates)"),
+        "{stderr}"
+    );
+    // Each encoding, and binary when none is asked for.
+    for (flag, encoding) in [
+        (Some("ascii"), "ascii"),
+        (Some("binary"), "binary"),
+        (Some("binary_compressed"), "binary_compressed"),
+        (None, "binary"),
+    ] {
+        let cloud = path(dir.path(), &format!("{}.pcd", flag.unwrap_or("default")));
+        let pcd = s(&cloud);
+        let mut args = vec!["sim", "terrain", "--points", "3000", "-o", pcd];
+        args.extend(flag.map(|f| ["--pcd-encoding", f]).into_iter().flatten());
+        ok(shroud(&args));
+        let bytes = std::fs::read(&cloud).unwrap();
+        let data_line = format!("\nPOINTS 3000\nDATA {encoding}\n");
+        assert!(
+            bytes
+                .windows(data_line.len())
+                .any(|w| w == data_line.as_bytes()),
+            "{flag:?}"
+        );
+        let stdout = ok(shroud(&["fit", pcd, "--grid", "8x8"]));
+        assert!(
+            stdout.contains("3000 points checked, 0 violations"),
+            "{stdout}"
+        );
+    }
+    // An encoding for another format, or an unknown one, is refused.
+    let cloud = path(dir.path(), "c.pcd");
+    fails_with(
+        shroud(&[
+            "sim",
+            "terrain",
+            "-o",
+            s(&path(dir.path(), "c.ply")),
+            "--pcd-encoding",
+            "ascii",
+        ]),
+        "not a .pcd file",
+    );
+    fails_with(
+        shroud(&["sim", "terrain", "-o", s(&cloud), "--pcd-encoding", "lzf"]),
+        "expected ascii, binary or binary_compressed",
+    );
+}
+
+#[test]
+fn bad_pcd_files_name_the_problem() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, bytes: &[u8]| write_file(dir.path(), name, bytes);
+    let mut truncated = b"VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n\
+        WIDTH 10\nHEIGHT 1\nPOINTS 10\nDATA binary\n"
+        .to_vec();
+    let body = truncated.len();
+    truncated.extend_from_slice(&[0u8; 50]);
+    fails_with(
+        shroud(&["fit", s(&write("cut.pcd", &truncated))]),
+        &format!(
+            "point 4 field 'x' needs 4 bytes at offset {}, only 2 remain",
+            body + 48
+        ),
+    );
+    fails_with(
+        shroud(&[
+            "fit",
+            s(&write(
+                "noz.pcd",
+                b"FIELDS x y\nPOINTS 1\nDATA ascii\n1 2\n",
+            )),
+        ]),
+        "no 'z' field",
+    );
+    // An unknown extension is sniffed: this is PCD, and its line 3 is wrong.
+    fails_with(
+        shroud(&[
+            "fit",
+            s(&write(
+                "scan.dat",
+                b"# .PCD v0.7\nFIELDS x y z\nPOINTS 2\nDATA ascii\n1 2 3\n4 5 x\n",
+            )),
+        ]),
+        "line 6 (point 1): field 'z' is 'x', not a number",
+    );
+    let all_nan =
+        b"FIELDS x y z\nWIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\nnan nan nan\nnan nan nan\n";
+    fails_with(
+        shroud(&["fit", s(&write("nan.pcd", all_nan))]),
+        "all 2 points of the PCD file are invalid",
     );
 }
 

@@ -1,10 +1,12 @@
 //! Reading and writing the files the CLI works with, with errors that name the file.
 
 use anyhow::{bail, Context, Result};
-use shroud_core::format::{self, CloudFormat};
+use shroud_core::format::{self, CloudFormat, PcdEncoding};
 use std::path::Path;
 
-/// Reads a point cloud (PLY ascii/binary, XYZ, CSV) and checks it is usable.
+/// Reads a point cloud (PLY ascii/binary, PCD ascii/binary/binary_compressed,
+/// XYZ, CSV) and checks it is usable. PCD points marked invalid (NaN
+/// coordinates) are left out with a warning that counts them.
 pub fn read_cloud(path: &Path) -> Result<Vec<[f32; 3]>> {
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
     if bytes.is_empty() {
@@ -13,6 +15,14 @@ pub fn read_cloud(path: &Path) -> Result<Vec<[f32; 3]>> {
     let format = cloud_format(path, &bytes);
     let cloud = format::parse_cloud(&bytes, format)
         .with_context(|| format!("cannot parse {}", path.display()))?;
+    if cloud.skipped_invalid > 0 {
+        tracing::warn!(
+            "{}: left out {} invalid points (NaN coordinates), as PCL's removeNaNFromPointCloud does; {} remain",
+            path.display(),
+            cloud.skipped_invalid,
+            cloud.points.len()
+        );
+    }
     shroud_core::cloud::validate_points(&cloud.points)
         .with_context(|| format!("bad point cloud {}", path.display()))?;
     Ok(cloud.points)
@@ -23,14 +33,29 @@ fn cloud_format(path: &Path, bytes: &[u8]) -> CloudFormat {
     CloudFormat::from_extension(ext).unwrap_or_else(|| CloudFormat::sniff(bytes))
 }
 
-/// Writes a cloud in the format its extension names (`.ply` binary, `.xyz`, `.csv`).
-pub fn write_cloud(path: &Path, points: &[[f32; 3]]) -> Result<()> {
+/// Writes a cloud in the format its extension names: `.ply` (binary), `.pcd`
+/// (`pcd_encoding`, binary when `None`), `.xyz`/`.txt`/`.asc` or `.csv`/`.tsv`
+/// (space-separated text). A `pcd_encoding` for any other extension is an error.
+pub fn write_cloud(
+    path: &Path,
+    points: &[[f32; 3]],
+    pcd_encoding: Option<PcdEncoding>,
+) -> Result<()> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
-    let bytes = match CloudFormat::from_extension(ext) {
+    let format = CloudFormat::from_extension(ext);
+    if pcd_encoding.is_some() && format != Some(CloudFormat::Pcd) {
+        bail!(
+            "{}: a PCD encoding was given, but the output is not a .pcd file",
+            path.display()
+        );
+    }
+    let bytes = match format {
         Some(CloudFormat::Ply) => format::write_ply_points(points, None, false),
+        Some(CloudFormat::Pcd) => format::write_pcd(points, None, pcd_encoding.unwrap_or_default())
+            .with_context(|| format!("cannot write {}", path.display()))?,
         Some(CloudFormat::Xyz) | Some(CloudFormat::Csv) => format::write_xyz(points),
         None => bail!(
-            "{}: unknown cloud extension '{ext}' (use .ply, .xyz or .csv)",
+            "{}: unknown cloud extension '{ext}' (use .ply, .pcd, .xyz or .csv)",
             path.display()
         ),
     };

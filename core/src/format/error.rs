@@ -40,6 +40,83 @@ pub enum FormatError {
     #[error("PLY body line {line}: {reason}")]
     PlyBadAsciiRecord { line: usize, reason: String },
 
+    // --- PCD (PCL's point cloud data) ----------------------------------------------
+    #[error("PCD header line {line} is malformed: {reason}")]
+    PcdMalformedHeader { line: usize, reason: String },
+    #[error("PCD header never ends: no 'DATA' line")]
+    PcdMissingData,
+    #[error("PCD header has no '{keyword}' line")]
+    PcdMissingKeyword { keyword: &'static str },
+    #[error("PCD header line {line}: unknown DATA '{found}' (expected ascii, binary or binary_compressed)")]
+    PcdUnknownData { line: usize, found: String },
+    #[error(
+        "PCD header line {line}: {keyword} has {got} values but FIELDS names {expected} fields"
+    )]
+    PcdFieldCountMismatch {
+        line: usize,
+        keyword: &'static str,
+        got: usize,
+        expected: usize,
+    },
+    #[error("PCD header line {line}: field '{field}' has TYPE {kind} with SIZE {size}, which PCD does not define (I and U take 1, 2, 4 or 8 bytes, F 4 or 8)")]
+    PcdUnsupportedType {
+        line: usize,
+        field: String,
+        kind: String,
+        size: usize,
+    },
+    #[error("PCD header has no '{axis}' field")]
+    PcdMissingCoordinate { axis: char },
+    #[error("PCD field '{field}' has COUNT {count}: shroud reads it as a single value per point")]
+    PcdFieldNotScalar { field: String, count: usize },
+    #[error("PCD header: POINTS {points} is not WIDTH {width} x HEIGHT {height}")]
+    PcdPointsMismatch {
+        points: usize,
+        width: usize,
+        height: usize,
+    },
+    #[error("PCD header: {what} is too large to address")]
+    PcdAbsurdSize { what: String },
+    #[error("PCD body is truncated: point {point} field '{field}' needs {needed} bytes at offset {offset}, only {available} remain")]
+    PcdTruncatedBody {
+        point: usize,
+        field: String,
+        needed: usize,
+        offset: usize,
+        available: usize,
+    },
+    #[error("PCD body holds {got} of the {expected} points the header announces (reading stopped at byte offset {offset})")]
+    PcdMissingPoints {
+        expected: usize,
+        got: usize,
+        offset: usize,
+    },
+    #[error("PCD body has {count} bytes after its last point (POINTS {points}), from byte offset {offset}, and they are not zero padding")]
+    PcdTrailingBytes {
+        count: usize,
+        points: usize,
+        offset: usize,
+    },
+    #[error("PCD body line {line} (point {point}): {reason}")]
+    PcdBadAsciiRecord {
+        line: usize,
+        point: usize,
+        reason: String,
+    },
+    #[error("PCD body line {line} (point {point}): field '{field}' is '{token}', not a number")]
+    PcdBadAsciiNumber {
+        line: usize,
+        point: usize,
+        field: String,
+        token: String,
+    },
+    #[error("PCD binary_compressed body at byte offset {offset}: {reason}")]
+    PcdBadCompressedBody { offset: usize, reason: String },
+    #[error("a binary_compressed PCD body of {bytes} bytes is more than the {max} bytes shroud reads back; write binary instead")]
+    PcdTooLargeToCompress { bytes: usize, max: usize },
+    #[error("all {count} points of the PCD file are invalid (NaN coordinates)")]
+    PcdAllPointsInvalid { count: usize },
+
     // --- triangle meshes (OBJ, PLY faces) ----------------------------------------
     #[error(
         "not a triangle mesh: neither a PLY file nor UTF-8 OBJ text (invalid UTF-8 on line {line})"

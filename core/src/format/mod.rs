@@ -1,5 +1,5 @@
 //! Every file format shroud reads or writes, as pure functions on bytes: point
-//! clouds (PLY, XYZ/CSV/TSV), surrogates (JSON and compact binary, both validated
+//! clouds (PLY, PCD, XYZ/CSV/TSV), surrogates (JSON and compact binary, both validated
 //! on read) and triangle meshes (OBJ, PLY) of the trimmed surfaces. The formats
 //! are specified for users in `core/FORMATS.md`.
 
@@ -8,12 +8,16 @@ mod crc32;
 mod error;
 mod mesh;
 mod mesh_read;
+mod pcd;
 mod ply;
+mod point_rows;
+mod scalar;
 mod surrogate_binary;
 mod surrogate_json;
 mod tessellate;
 #[cfg(test)]
 mod test_surrogate;
+mod text_lines;
 mod validate;
 mod xyz;
 
@@ -22,6 +26,7 @@ pub use crc32::crc32;
 pub use error::{FormatError, SurrogateDefect};
 pub use mesh::TriangleMesh;
 pub use mesh_read::parse_triangle_mesh;
+pub use pcd::{has_pcd_header, parse_pcd, write_pcd, PcdEncoding};
 pub use ply::{has_ply_magic, parse_ply, write_ply_points, PlyCloud};
 pub use surrogate_binary::{
     surrogate_from_binary, surrogate_to_binary, SURROGATE_BINARY_VERSION, SURROGATE_MAGIC,

@@ -15,7 +15,7 @@ use std::time::Instant;
 
 #[derive(clap::Args, Debug)]
 pub struct BlendArgs {
-    /// The parent cloud M_p (.ply, .xyz, .csv).
+    /// The parent cloud M_p (.ply, .pcd, .xyz, .csv).
     pub parent: PathBuf,
     /// The child cloud M_c, with an open boundary (its polygon of interest).
     pub child: PathBuf,

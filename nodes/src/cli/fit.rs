@@ -11,7 +11,7 @@ use std::time::Instant;
 
 #[derive(Debug, Args)]
 pub struct FitArgs {
-    /// Point cloud: .ply (ascii or binary), .xyz, .csv.
+    /// Point cloud: .ply (ascii or binary), .pcd (ascii, binary or binary_compressed), .xyz, .csv.
     pub input: PathBuf,
     /// upper (points below the surface), lower (points above), or sandwich (both).
     #[arg(long, default_value = "upper")]

@@ -5,6 +5,7 @@
 use crate::files;
 use anyhow::{bail, Context, Result};
 use clap::Args;
+use shroud_core::format::PcdEncoding;
 use shroud_core::mesh::{
     l_block, levels_within, parse_obj, ring_block, sample_limit_surface, step_block, write_obj,
     QuadMesh,
@@ -42,9 +43,17 @@ pub struct SimArgs {
     /// `shroud smooth --mesh`).
     #[arg(long)]
     pub write_quads: Option<PathBuf>,
-    /// Output cloud: .ply (binary), .xyz or .csv.
+    /// Output cloud: .ply (binary), .pcd (binary unless --pcd-encoding), .xyz or .csv.
     #[arg(short, long)]
     pub output: PathBuf,
+    /// For a .pcd output: ascii, binary or binary_compressed (default binary).
+    #[arg(long, value_parser = parse_pcd_encoding)]
+    pub pcd_encoding: Option<PcdEncoding>,
+}
+
+fn parse_pcd_encoding(text: &str) -> Result<PcdEncoding, String> {
+    PcdEncoding::from_name(text)
+        .ok_or_else(|| format!("{text:?}: expected ascii, binary or binary_compressed"))
 }
 
 /// Points of the limit surface of `--quads`, at uniformly random parameters.
@@ -60,7 +69,7 @@ fn limit_surface(args: &SimArgs) -> Result<()> {
     let samples = sample_limit_surface(&mesh, args.points, args.seed, depth)
         .with_context(|| format!("cannot refine {name}"))?;
     let points: Vec<[f32; 3]> = samples.iter().map(|s| s.point.map(|x| x as f32)).collect();
-    files::write_cloud(&args.output, &points)?;
+    files::write_cloud(&args.output, &points, args.pcd_encoding)?;
     if let Some(path) = &args.write_quads {
         files::write(path, &write_obj(&mesh))?;
     }
@@ -97,7 +106,7 @@ pub fn run(args: SimArgs) -> Result<()> {
         None => Scene::by_name(&args.scene, args.points, args.seed)?,
     };
     let points = scene.generate(args.time)?;
-    files::write_cloud(&args.output, &points)?;
+    files::write_cloud(&args.output, &points, args.pcd_encoding)?;
     println!(
         "wrote {} points of {} (t = {}) to {}",
         points.len(),

@@ -18,7 +18,7 @@ use std::time::Instant;
 
 #[derive(clap::Args, Debug)]
 pub struct SmoothArgs {
-    /// The cloud to fit (.ply, .xyz, .csv): a graph z(x, y) over a planar
+    /// The cloud to fit (.ply, .pcd, .xyz, .csv): a graph z(x, y) over a planar
     /// domain, a radial function over the sphere, or a surface in R^3 over a
     /// quad mesh in space.
     pub input: Option<PathBuf>,

@@ -27,7 +27,7 @@ use zenoh::Wait;
 pub struct BlendNodeArgs {
     #[command(flatten)]
     pub common: NodeCommon,
-    /// The parent cloud (.ply, .xyz, .csv).
+    /// The parent cloud (.ply, .pcd, .xyz, .csv).
     #[arg(
         long,
         required_unless_present = "parent_stream",

@@ -4,8 +4,9 @@
 
 use super::header::{Element, Header, PropertyKind};
 use super::layout::VertexLayout;
-use super::scalar::ScalarType;
 use super::PlyCloud;
+use crate::format::scalar::ScalarType;
+use crate::format::text_lines::TextLines;
 use crate::format::FormatError;
 
 /// Reads the vertex element of an ASCII PLY whose header is `header`.
@@ -19,7 +20,7 @@ pub fn read_vertices(
     let truncated = |got, lines: &BodyLines| FormatError::PlyTruncatedBody {
         expected: vertex.count,
         got,
-        offset: lines.pos,
+        offset: lines.offset(),
     };
     for element in &header.elements[..layout.element] {
         for _ in 0..element.count {
@@ -58,43 +59,26 @@ pub fn read_vertices(
 }
 
 /// Non-blank lines of the body with their 1-based line numbers.
-pub(super) struct BodyLines<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-    line: usize,
-}
+pub(super) struct BodyLines<'a>(TextLines<'a>);
 
 impl<'a> BodyLines<'a> {
     /// The lines of the body that follows `header` in `bytes`.
     pub(super) fn of(bytes: &'a [u8], header: &Header) -> Self {
-        Self {
-            bytes,
-            pos: header.body_offset,
-            line: header.body_line - 1,
-        }
+        Self(TextLines::new(bytes, header.body_offset, header.body_line))
     }
 
     /// Byte offset of the next unread line.
     pub(super) fn offset(&self) -> usize {
-        self.pos
+        self.0.offset()
     }
 
     pub(super) fn next_record(&mut self) -> Result<Option<(usize, &'a str)>, FormatError> {
-        while self.pos < self.bytes.len() {
-            let rest = &self.bytes[self.pos..];
-            let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
-            self.pos += (end + 1).min(rest.len());
-            self.line += 1;
-            let text =
-                std::str::from_utf8(&rest[..end]).map_err(|_| FormatError::PlyBadAsciiRecord {
-                    line: self.line,
-                    reason: "the line is not UTF-8 text".into(),
-                })?;
-            if !text.trim().is_empty() {
-                return Ok(Some((self.line, text)));
-            }
-        }
-        Ok(None)
+        self.0
+            .next_non_blank()
+            .map_err(|line| FormatError::PlyBadAsciiRecord {
+                line,
+                reason: "the line is not UTF-8 text".into(),
+            })
     }
 }
 
@@ -168,15 +152,11 @@ fn parse_value(token: &str, ty: ScalarType, line: usize) -> Result<f32, FormatEr
     parse_number(token, ty, line).map(|v| v as f32)
 }
 
-/// A number of type `ty` at full precision: `float` tokens are parsed as f32 (and
-/// widened exactly), every other type as f64.
+/// A number of type `ty` at full precision (see [`ScalarType::parse_text`]).
 pub(super) fn parse_number(token: &str, ty: ScalarType, line: usize) -> Result<f64, FormatError> {
-    let parsed = match ty {
-        ScalarType::F32 => token.parse::<f32>().ok().map(f64::from),
-        _ => token.parse::<f64>().ok(),
-    };
-    parsed.ok_or_else(|| FormatError::PlyBadAsciiNumber {
-        line,
-        token: token.into(),
-    })
+    ty.parse_text(token)
+        .ok_or_else(|| FormatError::PlyBadAsciiNumber {
+            line,
+            token: token.into(),
+        })
 }

@@ -4,8 +4,8 @@
 
 use super::header::{Element, Header, PropertyKind};
 use super::layout::{Slot, VertexLayout};
-use super::scalar::ScalarType;
 use super::PlyCloud;
+use crate::format::scalar::ScalarType;
 use crate::format::FormatError;
 
 /// Why a record could not be walked.

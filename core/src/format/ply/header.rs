@@ -1,7 +1,7 @@
 //! The PLY header: magic, format line, elements and their properties, up to
 //! `end_header`. Comments and `obj_info` lines are ignored.
 
-use super::scalar::ScalarType;
+use crate::format::scalar::ScalarType;
 use crate::format::FormatError;
 
 /// How the body after the header is encoded.

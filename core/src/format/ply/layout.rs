@@ -1,7 +1,7 @@
 //! Where the coordinates and the intensity sit in the `vertex` element.
 
 use super::header::{Element, Header, PropertyKind};
-use super::scalar::ScalarType;
+use crate::format::scalar::ScalarType;
 use crate::format::FormatError;
 
 /// Property names accepted as per-point intensity (ASCII case-insensitive;

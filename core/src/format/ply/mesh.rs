@@ -7,8 +7,8 @@ use super::ascii_body::{check_record_shape, parse_number, token_index, BodyLines
 use super::binary_body::{skip_element, walk_record, RecordError};
 use super::header::{parse_header, Element, Encoding, Header, PropertyKind};
 use super::layout::VertexLayout;
-use super::scalar::ScalarType;
 use crate::format::mesh_read::MeshBuilder;
+use crate::format::scalar::ScalarType;
 use crate::format::{FormatError, TriangleMesh};
 
 /// Names of the face list property, preferred in this order (ASCII

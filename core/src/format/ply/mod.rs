@@ -8,7 +8,6 @@ mod binary_body;
 mod header;
 mod layout;
 mod mesh;
-mod scalar;
 #[cfg(test)]
 mod tests;
 mod write;
@@ -28,17 +27,22 @@ pub struct PlyCloud {
     pub points: Vec<[f32; 3]>,
     /// One value per point, in the file's units (no rescaling).
     pub intensity: Option<Vec<f32>>,
+    /// Points the file marks invalid that were left out: PCD points with a NaN
+    /// coordinate (PCL's marker in organised clouds). Always 0 for PLY and text
+    /// files, whose non-finite points are kept for validation to reject.
+    pub skipped_invalid: usize,
 }
 
 impl PlyCloud {
-    fn with_capacity(points: usize, has_intensity: bool) -> Self {
+    pub(in crate::format) fn with_capacity(points: usize, has_intensity: bool) -> Self {
         Self {
             points: Vec::with_capacity(points),
             intensity: has_intensity.then(|| Vec::with_capacity(points)),
+            skipped_invalid: 0,
         }
     }
 
-    fn push(&mut self, point: [f32; 3], intensity: Option<f32>) {
+    pub(in crate::format) fn push(&mut self, point: [f32; 3], intensity: Option<f32>) {
         self.points.push(point);
         if let (Some(all), Some(value)) = (&mut self.intensity, intensity) {
             all.push(value);
