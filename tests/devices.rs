@@ -9,24 +9,12 @@ mod common;
 
 use common::device_rig::{
     clouds, expect_certified_surrogate, fit_from_above, label, path, status_until, Rig, LONG,
+    TILTING,
 };
 use common::Proc;
 use shroud_core::message::CloudMessage;
 use std::path::Path;
 use std::time::Duration;
-
-/// A mount 2.5 m above the table top with the scan plane vertical, nodding
-/// ±35° about y every 2 s (one sweep a second).
-const TILTING: [&str; 8] = [
-    "--mount",
-    "0,0,2.5,0,0,0",
-    "--mount-axis",
-    "y",
-    "--sensor-offset",
-    "0,0,0,0,90,0",
-    "--sweep",
-    "triangle:35:2",
-];
 
 #[test]
 fn devices_a_tilting_urg_becomes_clouds_and_certified_surrogates() {

@@ -6,8 +6,8 @@
 mod common;
 
 use common::{
-    alive, free_port, hub, hub_on_free_port, inbox, joint_spread, joint_spread_if_any,
-    peer_session, wiring, Inbox, Proc,
+    alive, free_port, hub, hub_on_free_port, inbox, joint_spread, peer_session, sheet, wait_moving,
+    wiring, Inbox, Proc,
 };
 use shroud_core::message::{CloudMessage, NodeStatusMessage, SurrogateMessage};
 use shroud_core::surrogate::{fit_surrogate, FitOptions, Sides};
@@ -20,19 +20,6 @@ use zenoh::Wait;
 
 const LONG: Duration = Duration::from_secs(60);
 const ARM_FILE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/launch/arms/demo_arm.toml");
-
-/// A horizontal sheet of points at height `z` over [-1, 1]^2.
-fn sheet(z: f32) -> Vec<[f32; 3]> {
-    (0..40 * 40)
-        .map(|i| {
-            [
-                (i % 40) as f32 / 19.5 - 1.0,
-                (i / 40) as f32 / 19.5 - 1.0,
-                z + 0.01 * ((i * 7) % 5) as f32,
-            ]
-        })
-        .collect()
-}
 
 /// A certified sandwich of a sheet far below the arm, as the fit node sends it.
 fn far_surrogate(sequence: u64) -> Vec<u8> {
@@ -106,22 +93,6 @@ fn keep_fresh(
     })
 }
 
-/// Waits until the arm moves (its deadman has a fresh clear).
-fn wait_moving(joints: &Inbox, what: &str, procs: &[&Proc]) {
-    let deadline = Instant::now() + LONG;
-    while joint_spread_if_any(joints, Duration::from_millis(300)).is_none_or(|s| s <= 1e-6) {
-        assert!(
-            Instant::now() < deadline,
-            "{what}: the arm never moved; output:\n{}",
-            procs
-                .iter()
-                .map(|p| p.output())
-                .collect::<Vec<_>>()
-                .join("\n---\n")
-        );
-    }
-}
-
 /// How many times the arm has halted for want of a verdict so far (its start,
 /// waiting for the first verdict, counts once).
 fn no_verdict_halts(status: &Inbox) -> u64 {
@@ -173,7 +144,7 @@ fn a_killed_guard_halts_the_arm_within_its_deadline() {
     let w = wiring(&endpoint, ns);
     let guard = start(&guard_args("far"), &w);
     let arm = start(&arm_args(), &w);
-    wait_moving(&joints, "guard running", &[&guard, &arm]);
+    wait_moving(&joints, "guard running", &[&guard, &arm], LONG);
     let before = no_verdict_halts(&status);
     guard.signal(libc::SIGKILL);
     assert_halts_for_no_verdict(&status, &joints, &arm, before);
@@ -359,7 +330,7 @@ fn a_partition_between_arm_and_guard_halts_the_arm() {
     ]);
     let joints = inbox(&observer, format!("shroud/{ns}/joints/demo_arm"));
     let status = inbox(&observer, format!("shroud/{ns}/status/arm"));
-    wait_moving(&joints, "relay forwarding", &[&guard, &arm]);
+    wait_moving(&joints, "relay forwarding", &[&guard, &arm], LONG);
     let before = no_verdict_halts(&status);
     forwarding.store(false, Ordering::Relaxed);
     assert_halts_for_no_verdict(&status, &joints, &arm, before);

@@ -4,6 +4,7 @@
 
 mod common;
 
+use common::launched::{endpoint_of, pids_of, write_launch};
 use common::{alive, assert_all_gone, client_of, joint_spread, KillOnDrop, Proc, Reaped};
 use shroud_core::message::{CollisionMessage, NodeStatusMessage, SurrogateMessage};
 use std::io::{BufRead, BufReader};
@@ -12,39 +13,6 @@ use std::time::{Duration, Instant};
 use zenoh::Wait;
 
 const LONG: Duration = Duration::from_secs(60);
-
-fn write_launch(dir: &std::path::Path, body: &str) -> String {
-    let path = dir.join("graph.toml");
-    std::fs::write(&path, body).unwrap();
-    path.to_str().unwrap().to_string()
-}
-
-/// The endpoint the launcher announces, and the pids of the nodes it started.
-fn endpoint_of(launcher: &Proc) -> String {
-    let line = launcher.expect_line("nodes connect to", LONG);
-    line.rsplit("nodes connect to ")
-        .next()
-        .unwrap()
-        .split(',')
-        .next()
-        .unwrap()
-        .trim()
-        .to_string()
-}
-
-fn pids_of(launcher: &Proc, names: &[&str]) -> Vec<i32> {
-    let mut found = std::collections::HashMap::new();
-    while found.len() < names.len() {
-        let line = launcher.expect_line("[launch] started ", LONG);
-        let rest = line.rsplit("started ").next().unwrap();
-        let (name, pid) = rest.split_once(" (pid ").unwrap();
-        found.insert(
-            name.to_string(),
-            pid.trim_end_matches(')').parse::<i32>().unwrap(),
-        );
-    }
-    names.iter().map(|n| found[*n]).collect()
-}
 
 const GRAPH: &str = r#"
 namespace = "NS"
@@ -234,17 +202,9 @@ fn collision(sample: &zenoh::sample::Sample) -> CollisionMessage {
     CollisionMessage::from_bytes(&sample.payload().to_bytes()).unwrap()
 }
 
-/// A horizontal sheet of points at height `z` over [-1, 1]^2.
+/// The sheet of points at height `z` as a cloud message.
 fn sheet(z: f32, sequence: u64) -> Vec<u8> {
-    let points: Vec<[f32; 3]> = (0..40 * 40)
-        .map(|i| {
-            [
-                (i % 40) as f32 / 19.5 - 1.0,
-                (i / 40) as f32 / 19.5 - 1.0,
-                z + 0.01 * ((i * 7) % 5) as f32,
-            ]
-        })
-        .collect();
+    let points = common::sheet(z);
     shroud_core::message::CloudMessage::new(
         common::unix_ns(),
         sequence,

@@ -9,6 +9,19 @@ use std::time::{Duration, Instant};
 
 pub const LONG: Duration = Duration::from_secs(60);
 
+/// A mount 2.5 m above the table top with the scan plane vertical, nodding
+/// ±35° about y every 2 s (one sweep a second), as `launch/lidar.toml`.
+pub const TILTING: [&str; 8] = [
+    "--mount",
+    "0,0,2.5,0,0,0",
+    "--mount-axis",
+    "y",
+    "--sensor-offset",
+    "0,0,0,0,90,0",
+    "--sweep",
+    "triangle:35:2",
+];
+
 pub struct Rig {
     pub endpoint: String,
     pub namespace: String,

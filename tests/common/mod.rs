@@ -5,6 +5,9 @@
 
 pub mod browser;
 pub mod device_rig;
+pub mod launched;
+pub mod status_board;
+pub mod websocket;
 
 use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};
@@ -210,6 +213,21 @@ pub fn unix_ns() -> u64 {
         .unwrap_or(0)
 }
 
+/// A horizontal sheet of 40 x 40 points at height `z` over [-1, 1]^2 (a
+/// little rough, so that it is not degenerate): far below the demo arm at
+/// z = -2, across its path at z = 1.2.
+pub fn sheet(z: f32) -> Vec<[f32; 3]> {
+    (0..40 * 40)
+        .map(|i| {
+            [
+                (i % 40) as f32 / 19.5 - 1.0,
+                (i / 40) as f32 / 19.5 - 1.0,
+                z + 0.01 * ((i * 7) % 5) as f32,
+            ]
+        })
+        .collect()
+}
+
 /// OBJ bytes of the cube inscribed in the sphere of radius 0.7 around
 /// (0.5, 0.5, 0.5): a coarse quad mesh of that ball, for parametric fits.
 pub fn inscribed_cube_obj() -> Vec<u8> {
@@ -338,4 +356,20 @@ pub fn wait_sources(
         }
     }
     Err(last)
+}
+
+/// Waits (up to `timeout`) until the arm moves: its deadman has a fresh clear.
+pub fn wait_moving(joints: &Inbox, what: &str, procs: &[&Proc], timeout: Duration) {
+    let deadline = Instant::now() + timeout;
+    while joint_spread_if_any(joints, Duration::from_millis(300)).is_none_or(|s| s <= 1e-6) {
+        assert!(
+            Instant::now() < deadline,
+            "{what}: the arm never moved; output:\n{}",
+            procs
+                .iter()
+                .map(|p| p.output())
+                .collect::<Vec<_>>()
+                .join("\n---\n")
+        );
+    }
 }

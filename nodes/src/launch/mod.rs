@@ -65,7 +65,13 @@ pub fn run(args: LaunchArgs) -> Result<()> {
         .build()
         .context("cannot start the async runtime")?;
     let duration = (args.duration > 0.0).then(|| Duration::from_secs_f64(args.duration));
+    let shm = file.zenoh.shm;
     let outcome = runtime.block_on(supervise::run_graph(file, args.node_log, duration));
+    // The children have stopped and the session is closed: their segments and
+    // ours are orphans now, which zenoh alone would leave in /dev/shm.
+    if shm {
+        crate::transport::release_shm_segments();
+    }
     // Every queued line (the children's last words too) before we exit.
     output::flush(std::time::Duration::from_secs(2));
     outcome

@@ -1,10 +1,12 @@
 //! The launcher's live summary: folds status, surrogate and collision messages
-//! into a [`GraphSummary`] and prints its line every period.
+//! into a [`GraphSummary`] and prints its line every period. Messages it cannot
+//! decode are skipped and counted in the launcher's status.
 
 use super::output;
+use super::roster::Roster;
 use anyhow::Result;
 use shroud_core::message::{
-    CollisionMessage, NodeStatusMessage, SurrogateMessage, TopicKind, Topics,
+    CollisionMessage, MessageError, NodeStatusMessage, SurrogateMessage, TopicKind, Topics,
 };
 use shroud_core::metrics::GraphSummary;
 use std::collections::BTreeSet;
@@ -15,7 +17,7 @@ fn lock(m: &Mutex<GraphSummary>) -> MutexGuard<'_, GraphSummary> {
     m.lock().unwrap_or_else(|p| p.into_inner())
 }
 
-pub async fn run(session: zenoh::Session, topics: Result<Topics>, period: f64) {
+pub async fn run(session: zenoh::Session, topics: Result<Topics>, period: f64, roster: Roster) {
     let Ok(topics) = topics else { return };
     let summary = Arc::new(Mutex::new(GraphSummary::default()));
     let mut subscribers = Vec::new();
@@ -29,33 +31,15 @@ pub async fn run(session: zenoh::Session, topics: Result<Topics>, period: f64) {
         };
         let sink = summary.clone();
         let announced = Mutex::new(BTreeSet::new());
+        let roster = roster.clone();
         let sub = session
             .declare_subscriber(&key)
             .callback(move |sample| {
                 let bytes = sample.payload().to_bytes();
-                let mut s = lock(&sink);
-                // Malformed messages are the nodes' business (they count them);
-                // the summary simply skips them.
-                match kind {
-                    TopicKind::Status => {
-                        if let Ok(m) = NodeStatusMessage::from_bytes(&bytes) {
-                            announce_url(
-                                &m,
-                                &mut announced.lock().unwrap_or_else(|p| p.into_inner()),
-                            );
-                            s.on_status(m);
-                        }
-                    }
-                    TopicKind::Surrogate => {
-                        if let Ok((m, _)) = SurrogateMessage::from_bytes(&bytes) {
-                            s.on_surrogate(&m);
-                        }
-                    }
-                    _ => {
-                        if let Ok(m) = CollisionMessage::from_bytes(&bytes) {
-                            s.on_collision(m);
-                        }
-                    }
+                // Malformed messages are the nodes' business (they log them);
+                // the summary skips them and counts them once, unlogged.
+                if fold(kind, &bytes, &mut lock(&sink), &announced).is_err() {
+                    roster.malformed();
                 }
             })
             .await;
@@ -75,6 +59,25 @@ pub async fn run(session: zenoh::Session, topics: Result<Topics>, period: f64) {
         let line = lock(&summary).line(start.elapsed().as_secs_f64());
         output::out(line);
     }
+}
+
+/// Folds one message of `kind` into the summary.
+fn fold(
+    kind: TopicKind,
+    bytes: &[u8],
+    summary: &mut GraphSummary,
+    announced: &Mutex<BTreeSet<String>>,
+) -> Result<(), MessageError> {
+    match kind {
+        TopicKind::Status => {
+            let m = NodeStatusMessage::from_bytes(bytes)?;
+            announce_url(&m, &mut announced.lock().unwrap_or_else(|p| p.into_inner()));
+            summary.on_status(m);
+        }
+        TopicKind::Surrogate => summary.on_surrogate(&SurrogateMessage::from_bytes(bytes)?.0),
+        _ => summary.on_collision(CollisionMessage::from_bytes(bytes)?),
+    }
+    Ok(())
 }
 
 /// Prints a node's page once (`dashboard.url` in its status labels), so the

@@ -1,10 +1,12 @@
-//! What the launcher knows of its children (starts, restarts, pid, state),
-//! published as its own status message (`status/launcher`, kind `launch`), so
-//! that `shroud node list`, dashboards and tests see restart counts.
+//! What the launcher knows of its children (starts, restarts, pid, state) and
+//! the malformed messages its summary skipped, published as its own status
+//! message (`status/launcher`, kind `launch`), so that `shroud node list`,
+//! dashboards and tests see restart counts.
 
 use crate::transport::unix_ns;
 use shroud_core::message::{NodeStatusMessage, TopicKind, Topics};
 use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 use zenoh::Wait;
@@ -19,13 +21,22 @@ struct Child {
     state: &'static str,
 }
 
-/// Every child's record, shared by the supervising tasks.
+/// Every child's record, shared by the supervising tasks, and the summary's
+/// count of messages it could not decode.
 #[derive(Debug, Clone, Default)]
-pub struct Roster(Arc<Mutex<BTreeMap<String, Child>>>);
+pub struct Roster {
+    children: Arc<Mutex<BTreeMap<String, Child>>>,
+    dropped_malformed: Arc<AtomicU64>,
+}
 
 impl Roster {
     fn lock(&self) -> MutexGuard<'_, BTreeMap<String, Child>> {
-        self.0.lock().unwrap_or_else(|p| p.into_inner())
+        self.children.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// The summary skipped a message it could not decode.
+    pub fn malformed(&self) {
+        self.dropped_malformed.fetch_add(1, Ordering::Relaxed);
     }
 
     /// Node `name` was started with `pid`.
@@ -43,11 +54,15 @@ impl Roster {
     }
 
     /// The status message: `restarts.<node>` and `starts.<node>` counters,
-    /// `pid.<node>` and `state.<node>` labels.
+    /// `pid.<node>` and `state.<node>` labels, and `dropped_malformed`.
     pub fn status(&self, started: Instant) -> NodeStatusMessage {
         let mut msg = NodeStatusMessage::new(LAUNCHER_NAME, "launch", std::process::id());
         msg.stamp_ns = unix_ns();
         msg.uptime_s = started.elapsed().as_secs_f64();
+        msg.counters.insert(
+            "dropped_malformed".into(),
+            self.dropped_malformed.load(Ordering::Relaxed),
+        );
         for (name, child) in self.lock().iter() {
             msg.counters.insert(format!("starts.{name}"), child.starts);
             msg.counters
@@ -94,6 +109,7 @@ mod tests {
         roster.set_state("fit", "restarting");
         roster.started("fit", 11);
         roster.started("guard", 12);
+        roster.malformed();
         let msg = roster.status(Instant::now());
         assert_eq!(msg.node, LAUNCHER_NAME);
         assert_eq!(msg.kind, "launch");
@@ -102,5 +118,6 @@ mod tests {
         assert_eq!(msg.counter("restarts.guard"), 0);
         assert_eq!(msg.labels["pid.fit"], "11");
         assert_eq!(msg.labels["state.fit"], "running");
+        assert_eq!(msg.counter("dropped_malformed"), 1);
     }
 }

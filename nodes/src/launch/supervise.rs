@@ -94,6 +94,7 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
             session.clone(),
             hub.topics(),
             file.summary.period_s,
+            roster.clone(),
         ))
     });
     let deadline = async {

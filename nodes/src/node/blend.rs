@@ -112,6 +112,8 @@ fn serve(ctx: Arc<NodeContext>, args: BlendNodeArgs, params: BlendParams) -> Res
     let mut last_publish = Instant::now();
     let republish = (args.republish > 0.0).then(|| Duration::from_secs_f64(args.republish));
     while !ctx.stopping() {
+        ctx.metrics
+            .set_counter("dropped_backlog", mailbox.dropped());
         let Some(first) = mailbox.pop(Duration::from_millis(100)) else {
             if republish.is_some_and(|period| last_publish.elapsed() >= period) {
                 out.publish(&session);

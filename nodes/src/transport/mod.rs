@@ -1,7 +1,7 @@
 //! zenoh transport: session configuration from the command line, the bounded
 //! drop-oldest mailbox between a subscriber and its worker, and publishing
-//! through shared memory when it is available; child processes tied to
-//! their parent's life.
+//! through shared memory when it is available, and removing zenoh's
+//! shared-memory segments at exit; child processes tied to their parent's life.
 
 mod args;
 mod clock;
@@ -9,6 +9,7 @@ mod lifeline;
 mod mailbox;
 mod publish;
 mod qos;
+mod shm_cleanup;
 mod signal;
 
 pub use args::{OnOff, ZenohArgs};
@@ -20,4 +21,5 @@ pub use lifeline::{
 pub use mailbox::Mailbox;
 pub use publish::PayloadWriter;
 pub use qos::topic_publisher;
+pub use shm_cleanup::{is_zenoh_segment, release_shm_segments};
 pub use signal::shutdown_signal;

@@ -135,12 +135,20 @@ impl FrameBuilder {
         self.hub.count() > 0
     }
 
-    /// A new browser: the hello, then the latest of everything.
+    /// A new browser: the hello, then the latest of everything. A latest
+    /// sample that does not decode is counted now and forgotten, so that the
+    /// next browser does not count it again.
     fn greet(&mut self) {
         self.hub.broadcast("hello", self.shared_hello());
-        let latest: Vec<(TopicKey, Arrival)> = self.latest.values().cloned().collect();
-        for (key, arrival) in latest {
-            self.draw(&key, &arrival);
+        let latest: Vec<(String, TopicKey, Arrival)> = self
+            .latest
+            .iter()
+            .map(|(name, (k, a))| (name.clone(), k.clone(), a.clone()))
+            .collect();
+        for (name, key, arrival) in latest {
+            if !self.draw(&key, &arrival) {
+                self.latest.remove(&name);
+            }
         }
         self.send_verdicts(monotonic_ns());
         self.send_nodes(monotonic_ns());
@@ -159,18 +167,20 @@ impl FrameBuilder {
             TopicKind::Status => self.on_status(&key, &arrival),
             TopicKind::Collision => self.on_collision(&key, &arrival),
             TopicKind::Cloud | TopicKind::Surrogate | TopicKind::Smooth | TopicKind::Joints => {
-                if self.browsers() {
-                    self.draw(&key, &arrival);
+                // Kept for the next browser unless it was decoded and found
+                // malformed (counted once, here).
+                if !self.browsers() || self.draw(&key, &arrival) {
+                    let name = format!("{}/{}", key.kind, key.name);
+                    self.latest.insert(name, (key, arrival));
                 }
-                let name = format!("{}/{}", key.kind, key.name);
-                self.latest.insert(name, (key, arrival));
             }
             TopicKind::Alive | TopicKind::Blend => {}
         }
     }
 
-    /// Builds and sends the frame of a drawable sample.
-    fn draw(&mut self, key: &TopicKey, arrival: &Arrival) {
+    /// Builds and sends the frame of a drawable sample; false (and counted
+    /// as malformed) when it does not decode.
+    fn draw(&mut self, key: &TopicKey, arrival: &Arrival) -> bool {
         let bytes = arrival.payload.to_bytes();
         let outcome = match key.kind {
             TopicKind::Cloud => self.draw_cloud(key, &bytes),
@@ -187,9 +197,13 @@ impl FrameBuilder {
             TopicKind::Joints => self.draw_arm(&bytes),
             _ => Ok(()),
         };
-        if let Err(e) = outcome {
-            self.ctx
-                .drop_malformed(&format!("{}/{}", key.kind, key.name), &e);
+        match outcome {
+            Ok(()) => true,
+            Err(e) => {
+                self.ctx
+                    .drop_malformed(&format!("{}/{}", key.kind, key.name), &e);
+                false
+            }
         }
     }
 

@@ -7,7 +7,8 @@ use super::status::{publish_final_status, publish_status};
 use super::watchdog::Watchdog;
 use crate::node::metrics::NodeMetrics;
 use crate::transport::{
-    keep_outputs_writable, shutdown_signal, silence_broken_outputs, watch_parent,
+    keep_outputs_writable, release_shm_segments, shutdown_signal, silence_broken_outputs,
+    watch_parent,
 };
 use anyhow::{Context, Result};
 use shroud_core::message::{check_name, TopicKind};
@@ -67,6 +68,12 @@ where
     watchdog.arm();
     watchdog.stage("the runtime's tasks");
     runtime.shutdown_timeout(RUNTIME_GRACE);
+    // The session is closed: no segment of ours is in use any more, and zenoh
+    // would leave some behind (see `release_shm_segments`).
+    if common.zenoh.shm.is_on() {
+        watchdog.stage("removing shared-memory segments");
+        release_shm_segments();
+    }
     served.unwrap_or_else(|_| Err(anyhow::anyhow!("node {name} panicked")))
 }
 
