@@ -15,40 +15,9 @@ use zenoh::Wait;
 
 const PACKAGES: [&str; 3] = ["eclipse-zenoh==1.10.2", "msgpack==1.1.2", "numpy==2.2.6"];
 
-/// A virtual environment with the example's packages, created once (tests
-/// run in parallel: one creates it while the others wait).
+/// The venv with the example's packages.
 fn python() -> PathBuf {
-    static CREATING: std::sync::Mutex<()> = std::sync::Mutex::new(());
-    let _one_at_a_time = CREATING.lock().unwrap_or_else(|e| e.into_inner());
-    let venv = Path::new(env!("CARGO_TARGET_TMPDIR")).join("pyenv");
-    let py = venv.join("bin/python3");
-    let ready = venv.join(".ready");
-    if !ready.exists() {
-        let status = Command::new("python3")
-            .args(["-m", "venv"])
-            .arg(&venv)
-            .status()
-            .expect("python3 runs");
-        assert!(status.success(), "python3 -m venv failed");
-        let out = Command::new(&py)
-            .args([
-                "-m",
-                "pip",
-                "install",
-                "--quiet",
-                "--disable-pip-version-check",
-            ])
-            .args(PACKAGES)
-            .output()
-            .expect("pip runs");
-        assert!(
-            out.status.success(),
-            "pip install {PACKAGES:?} failed (needs the PyPI registry): {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        std::fs::write(&ready, "").unwrap();
-    }
-    py
+    common::python::python_with("pyenv", &PACKAGES)
 }
 
 /// The code block between the `marker` markers of FORMATS.md.

@@ -6,6 +6,7 @@
 pub mod browser;
 pub mod device_rig;
 pub mod launched;
+pub mod python;
 pub mod status_board;
 pub mod websocket;
 
