@@ -17,6 +17,7 @@ mod moving_spheres;
 pub mod parts;
 mod path;
 mod sampling;
+pub mod scanned_parts;
 mod scanner;
 mod scene;
 mod table_objects;

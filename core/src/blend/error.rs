@@ -1,5 +1,6 @@
 //! Why a blend cannot be made: every failure on input-derived data is one of these.
 
+use crate::cloud::BoundaryFailure;
 use thiserror::Error;
 
 /// Errors of the blending pipeline (placement, regions, RBF, sampling, merge).
@@ -15,8 +16,12 @@ pub enum BlendError {
     NonFinite { what: &'static str, index: usize },
     #[error("the points of the {what} cloud (almost) all coincide: no sampling spacing")]
     Coincident { what: &'static str },
-    #[error("the {what} cloud has no open boundary loop to use as polygon of interest")]
-    NoBoundaryLoop { what: &'static str },
+    /// No rim to take as the polygon of interest; `reason` says why and what to do.
+    #[error("the {what} cloud has no usable rim for the polygon of interest: {reason}")]
+    NoBoundaryLoop {
+        what: &'static str,
+        reason: BoundaryFailure,
+    },
     #[error("degenerate polygon of interest: {reason}")]
     DegeneratePolygon { reason: String },
     #[error("blending region {region} has {count} points; at least {min} are needed (move the child or widen the region)")]

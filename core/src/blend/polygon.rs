@@ -4,7 +4,7 @@
 
 use super::error::BlendError;
 use super::polygon2d::Polygon2;
-use crate::cloud::{boundary_loops, fit_plane, BoundaryParams, NeighbourIndex, Plane};
+use crate::cloud::{find_rim, fit_plane, BoundaryParams, NeighbourIndex, Plane};
 use glam::{DVec2, DVec3};
 
 /// Closed polyline in 3D, validated as non-degenerate (it spans an area).
@@ -60,15 +60,16 @@ impl PolygonOfInterest {
         Self::from_polyline(resample_closed(&loop_points, max_vertices.max(3)))
     }
 
-    /// The longest open-boundary loop of the cloud in `index`.
+    /// The rim of the cloud in `index` (its longest open-boundary loop, see
+    /// [`find_rim`]); `what` names the cloud in the error.
     pub fn detect(
         index: &NeighbourIndex,
         params: &BoundaryParams,
         what: &'static str,
     ) -> Result<Self, BlendError> {
-        let loops = boundary_loops(index, params);
-        let longest = loops.first().ok_or(BlendError::NoBoundaryLoop { what })?;
-        Self::from_loop(index.points(), &longest.indices, MAX_POLYGON_VERTICES)
+        let rim = find_rim(index, params)
+            .map_err(|reason| BlendError::NoBoundaryLoop { what, reason })?;
+        Self::from_loop(index.points(), &rim.indices, MAX_POLYGON_VERTICES)
     }
 
     pub fn vertices(&self) -> &[DVec3] {

@@ -10,7 +10,9 @@ mod point_cloud;
 
 pub use point_cloud::validate_points;
 
-pub use boundary::{boundary_loops, boundary_points, largest_gap, BoundaryLoop, BoundaryParams};
+pub use boundary::{
+    boundary_loops, boundary_points, find_rim, BoundaryFailure, BoundaryLoop, BoundaryParams,
+};
 pub use neighbours::{to_dvec3, to_f32, NeighbourIndex};
 pub use normals::{
     default_orientation, estimate_normals, orient_normals, oriented_normals, Orientation,
