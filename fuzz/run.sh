@@ -10,9 +10,9 @@
 #
 # Usage: fuzz/run.sh [SECONDS]    (stable Rust: RUSTC_BOOTSTRAP=1 allows the
 # flags cargo-fuzz passes; cargo-fuzz from `cargo install cargo-fuzz --locked`)
-# Environment: CARGO_TARGET_DIR (the build goes to its `fuzz` folder) and
+# Environment: CARGO_TARGET_DIR (the build goes to its `fuzz` folder),
 # FUZZ_WORK (scratch corpora, logs and crashing inputs; default
-# <target dir>/fuzz/work).
+# <target dir>/fuzz/work) and FUZZ_JOBS (targets fuzzed at once, default 1).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-20}"
@@ -36,35 +36,58 @@ max_len() {
   echo $(( ${longest:-0} > 4096 ? ${longest:-0} : 4096 ))
 }
 
-echo "== fuzzing each target for ${seconds} s"
-printf '%-22s %12s %8s %8s %8s\n' target executions cov ft corpus
-failed=()
-for name in $(cargo fuzz list); do
-  corpus="fuzz/corpus/$name"
-  scratch="$work/corpus/$name"
-  artifacts="$work/artifacts/$name"
-  log="$work/logs/$name.log"
-  mkdir -p "$scratch" "$artifacts" "$(dirname "$log")"
-  status=0
+# Fuzzes target $1; writes its table row to $work/results/$1 and, if it
+# failed, what to show to $work/results/$1.failed.
+fuzz_one() {
+  local name="$1" corpus="fuzz/corpus/$1" scratch="$work/corpus/$1"
+  local artifacts="$work/artifacts/$1" log="$work/logs/$1.log" status=0
+  mkdir -p "$scratch" "$artifacts" "$work/logs" "$work/results"
+  rm -f "$work/results/$name.failed"
   "$bin_dir/$name" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
     -max_len="$(max_len "$corpus")" -print_final_stats=1 -artifact_prefix="$artifacts/" \
     "$scratch" "$corpus" >"$log" 2>&1 || status=$?
+  local executions last cov ft files
   executions="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
-  last="$(grep -E '^#[0-9]+' "$log" | tail -1)"
+  last="$(grep -E '^#[0-9]+' "$log" | tail -1 || true)"
   cov="$(sed -n 's/.* cov: \([0-9]*\).*/\1/p' <<<"$last")"
   ft="$(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"$last")"
   files="$(find "$scratch" "$corpus" -type f | wc -l)"
-  printf '%-22s %12s %8s %8s %8s\n' "$name" "${executions:-?}" "${cov:-?}" "${ft:-?}" "$files"
+  printf '%-22s %12s %8s %8s %8s\n' "$name" "${executions:-?}" "${cov:-?}" "${ft:-?}" "$files" \
+    >"$work/results/$name"
   if [ "$status" -ne 0 ]; then
-    failed+=("$name")
-    echo "!! $name failed (exit $status); log $log:"
-    grep -E -A12 'panicked|ERROR: libFuzzer|deadly signal' "$log" | head -40 || true
-    for input in "$artifacts"/*; do
-      [ -f "$input" ] || continue
-      echo "!! crashing input $input (base64):"
-      base64 -w 76 "$input"
-    done
+    {
+      echo "!! $name failed (exit $status); log $log:"
+      grep -E -A12 'panicked|ERROR: libFuzzer|deadly signal' "$log" | head -40 || true
+      for input in "$artifacts"/*; do
+        [ -f "$input" ] || continue
+        echo "!! crashing input $input (base64):"
+        base64 -w 76 "$input"
+      done
+    } >"$work/results/$name.failed"
   fi
+}
+
+parallel="${FUZZ_JOBS:-1}"
+names="$(cargo fuzz list)"
+echo "== fuzzing each target for ${seconds} s, ${parallel} at a time"
+fuzz_start=$SECONDS
+for name in $names; do
+  while [ "$(jobs -rp | wc -l)" -ge "$parallel" ]; do wait -n || true; done
+  fuzz_one "$name" &
+done
+wait
+echo "fuzzed in $((SECONDS - fuzz_start)) s"
+
+printf '%-22s %12s %8s %8s %8s\n' target executions cov ft corpus
+failed=()
+for name in $names; do
+  cat "$work/results/$name"
+  if [ -f "$work/results/$name.failed" ]; then
+    failed+=("$name")
+  fi
+done
+for name in "${failed[@]}"; do
+  cat "$work/results/$name.failed"
 done
 
 if [ "${#failed[@]}" -gt 0 ]; then
