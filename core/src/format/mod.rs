@@ -20,6 +20,8 @@ mod test_surrogate;
 mod text_lines;
 mod validate;
 mod xyz;
+#[cfg(test)]
+mod xyz_proptests;
 
 pub use cloud_format::{parse_cloud, CloudFormat};
 pub use crc32::crc32;

@@ -9,6 +9,8 @@ mod header;
 mod layout;
 mod mesh;
 #[cfg(test)]
+mod proptests;
+#[cfg(test)]
 mod tests;
 mod write;
 

@@ -1,0 +1,45 @@
+//! Collision verdict messages (`CollisionMessage::from_bytes`).
+
+use crate::check::named;
+use crate::round_trip;
+use shroud_core::message::{CollisionMessage, GuardVerdict, LinkClearance};
+
+pub fn run(data: &[u8]) {
+    match CollisionMessage::from_bytes(data) {
+        Ok(message) => {
+            round_trip::message(
+                &message,
+                CollisionMessage::to_bytes,
+                CollisionMessage::from_bytes,
+            );
+        }
+        Err(e) => named(&e),
+    }
+}
+
+pub fn seeds() -> Vec<Vec<u8>> {
+    let message = CollisionMessage {
+        version: shroud_core::message::SCHEMA_VERSION,
+        joints_stamp_ns: 100,
+        joints_sequence: 7,
+        arm: "arm".into(),
+        surrogate_stamp_ns: 90,
+        surrogate_sequence: 3,
+        surrogate_age_ns: 10,
+        views: 2,
+        verdict: GuardVerdict::Stop,
+        stop: true,
+        reason: "link forearm within 0.05 m".into(),
+        stop_distance: 0.05,
+        min_clearance: 0.01,
+        closest_link: "forearm".into(),
+        unobserved: false,
+        links: vec![LinkClearance {
+            link: "forearm".into(),
+            clearance: 0.01,
+            unobserved: true,
+        }],
+        check_ns: 5000,
+    };
+    vec![message.to_bytes().expect("the seed message encodes")]
+}

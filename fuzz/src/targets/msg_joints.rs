@@ -1,0 +1,24 @@
+//! Joint-state messages (`JointStateMessage::from_bytes`).
+
+use crate::check::named;
+use crate::round_trip;
+use shroud_core::message::JointStateMessage;
+
+pub fn run(data: &[u8]) {
+    match JointStateMessage::from_bytes(data) {
+        Ok(message) => {
+            round_trip::message(
+                &message,
+                JointStateMessage::to_bytes,
+                JointStateMessage::from_bytes,
+            );
+        }
+        Err(e) => named(&e),
+    }
+}
+
+pub fn seeds() -> Vec<Vec<u8>> {
+    let names = vec!["shoulder".to_string(), "elbow".to_string()];
+    let message = JointStateMessage::new(10, 4, "arm", names, vec![0.5, -1.25]);
+    vec![message.to_bytes().expect("the seed message encodes")]
+}
