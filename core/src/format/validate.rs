@@ -193,6 +193,14 @@ fn validate_certificate(
             certificate.violations
         ));
     }
+    let gaps = [
+        ("min_gap", certificate.min_gap),
+        ("max_gap", certificate.max_gap),
+        ("mean_gap", certificate.mean_gap),
+    ];
+    if let Some((name, value)) = gaps.iter().find(|(_, g)| !g.is_finite()) {
+        return defect(format!("{name} is {value}, not a finite number"));
+    }
     let direction = DVec3::from_array(certificate.direction);
     if !direction.is_finite() || (direction - frame.direction).length() > AXIS_TOLERANCE {
         return defect(format!(
@@ -219,6 +227,19 @@ mod tests {
     fn fitted_surrogates_are_valid() {
         for sides in [Sides::Upper, Sides::Lower, Sides::Sandwich] {
             assert_eq!(validate_surrogate(&fitted(sides, true)), Ok(()));
+        }
+    }
+
+    #[test]
+    fn non_finite_certificate_gaps_are_refused() {
+        // Found by the surrogate_binary fuzz target: a binary surrogate with a
+        // NaN gap was accepted, and its JSON (null) then refused.
+        for value in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let defect = defect_after(|s| s.upper.as_mut().unwrap().certificate.mean_gap = value);
+            assert!(
+                matches!(&defect, SurrogateDefect::Certificate { side: "upper", reason } if reason.contains("mean_gap")),
+                "{defect:?}"
+            );
         }
     }
 

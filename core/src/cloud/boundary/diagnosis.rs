@@ -40,7 +40,7 @@ pub enum BoundaryFailure {
     #[error(
         "its rim points ({candidates}, in {pieces} chains of {min} or more, the longest of {longest}) \
          do not close into a loop: the rim has gaps wider than the reach of {k} neighbours; \
-         scan the rim more densely, raise the boundary k, or give the polygon of interest"
+         scan the rim more densely or give the polygon of interest"
     )]
     OpenRim {
         candidates: usize,

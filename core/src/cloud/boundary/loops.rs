@@ -95,9 +95,8 @@ pub fn close_loop(points: &[DVec3], members: &[(usize, f64)], link: f64) -> Opti
         })
         .collect();
     let (_, previous) = band.shortest_paths(start, &open);
-    if previous[end].is_none() {
-        return None;
-    }
+    // No second path: the chain does not close.
+    previous[end]?;
     let second = path_to(&previous, end);
     let mut order = first;
     order.extend(

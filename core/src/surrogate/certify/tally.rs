@@ -130,8 +130,10 @@ impl Tally {
             direction: frame.direction.to_array(),
             points_checked: self.count,
             violations: self.wrong.len() as u64,
-            min_gap: self.min(),
-            max_gap: self.max,
+            // No point checked: gaps of 0 (finite, as every reader demands)
+            // rather than the empty fold's infinities.
+            min_gap: if self.count > 0 { self.min() } else { 0.0 },
+            max_gap: if self.count > 0 { self.max } else { 0.0 },
             mean_gap: if self.count > 0 {
                 self.sum / self.count as f64
             } else {
