@@ -42,7 +42,7 @@ fuzz_one() {
   local name="$1" corpus="fuzz/corpus/$1" scratch="$work/corpus/$1"
   local artifacts="$work/artifacts/$1" log="$work/logs/$1.log" status=0
   mkdir -p "$scratch" "$artifacts" "$work/logs" "$work/results"
-  rm -f "$work/results/$name.failed"
+  rm -f "$work/results/$name" "$work/results/$name.failed"
   "$bin_dir/$name" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
     -max_len="$(max_len "$corpus")" -print_final_stats=1 -artifact_prefix="$artifacts/" \
     "$scratch" "$corpus" >"$log" 2>&1 || status=$?
@@ -81,7 +81,14 @@ echo "fuzzed in $((SECONDS - fuzz_start)) s"
 printf '%-22s %12s %8s %8s %8s\n' target executions cov ft corpus
 failed=()
 for name in $names; do
-  cat "$work/results/$name"
+  if [ ! -f "$work/results/$name" ]; then
+    # Its run stopped before writing its row: never count that as a pass.
+    echo "!! $name: no result (its run was cut short; see $work/logs/$name.log)" \
+      >"$work/results/$name.failed"
+    printf '%-22s %12s\n' "$name" "no result"
+  else
+    cat "$work/results/$name"
+  fi
   if [ -f "$work/results/$name.failed" ]; then
     failed+=("$name")
   fi

@@ -182,6 +182,10 @@ fn too_sparse(
         candidates,
         k: params.k,
         reach,
-        suggested: (points as f64 * scale).ceil() as usize,
+        // Never fewer than a neighbourhood and a rim's worth of points (an
+        // empty or tiny cloud would otherwise be told to scan "0 points").
+        suggested: ((points as f64 * scale).ceil() as usize)
+            .max(params.k + 1)
+            .max(params.min_loop_points),
     }
 }

@@ -18,6 +18,7 @@ use shroud_core::message::{
     SurrogateMessage, TopicKey, TopicKind,
 };
 use shroud_core::metrics::NodeHealth;
+use shroud_core::pace::Paced;
 use shroud_core::scene::pose_arm;
 use std::collections::BTreeMap;
 use std::sync::atomic::Ordering;
@@ -43,6 +44,9 @@ pub struct BuilderConfig {
     /// `--blend-stream`: the blend node to drive; `None`: the first that
     /// announces itself.
     pub blend_stream: Option<String>,
+    /// Nanoseconds between two frames of one cloud, surrogate or smooth
+    /// stream (`--max-rate`).
+    pub pace_ns: u64,
 }
 
 /// State shared with the browser handlers (they read the palette to route
@@ -64,6 +68,8 @@ pub struct FrameBuilder {
     restarts: BTreeMap<String, u64>,
     /// The latest payload of every drawable key, to greet a new browser.
     latest: BTreeMap<String, (TopicKey, Arrival)>,
+    /// The heavy streams' samples waiting for their stream's next frame.
+    paced: Paced<String, (TopicKey, Arrival)>,
     started_ns: u64,
 }
 
@@ -75,6 +81,7 @@ impl FrameBuilder {
         shared: Arc<Shared>,
         config: BuilderConfig,
     ) -> Self {
+        let pace_ns = config.pace_ns;
         let watches = config
             .arms
             .iter()
@@ -95,6 +102,7 @@ impl FrameBuilder {
             watches,
             restarts: BTreeMap::new(),
             latest: BTreeMap::new(),
+            paced: Paced::new(pace_ns),
             started_ns: monotonic_ns(),
         };
         builder.refresh_hello();
@@ -116,10 +124,13 @@ impl FrameBuilder {
             if self.hub.take_joined() {
                 self.greet();
             }
-            if let Some((key, arrival)) = self.inbox.take(Duration::from_millis(50)) {
+            if let Some((key, arrival)) = self.inbox.take(Duration::from_millis(20)) {
                 self.on_arrival(key, arrival);
             }
             let now = monotonic_ns();
+            for (_, (key, arrival)) in self.paced.release(now) {
+                self.keep_drawn(key, arrival);
+            }
             if now >= next_verdicts {
                 self.send_verdicts(now);
                 next_verdicts = now + VERDICT_PERIOD_NS;
@@ -166,15 +177,24 @@ impl FrameBuilder {
         match key.kind {
             TopicKind::Status => self.on_status(&key, &arrival),
             TopicKind::Collision => self.on_collision(&key, &arrival),
-            TopicKind::Cloud | TopicKind::Surrogate | TopicKind::Smooth | TopicKind::Joints => {
-                // Kept for the next browser unless it was decoded and found
-                // malformed (counted once, here).
-                if !self.browsers() || self.draw(&key, &arrival) {
-                    let name = format!("{}/{}", key.kind, key.name);
-                    self.latest.insert(name, (key, arrival));
+            TopicKind::Joints => self.keep_drawn(key, arrival),
+            TopicKind::Cloud | TopicKind::Surrogate | TopicKind::Smooth => {
+                let stream = format!("{}/{}", key.kind, key.name);
+                let at = arrival.received_ns;
+                if let Some((key, arrival)) = self.paced.offer(stream, (key, arrival), at) {
+                    self.keep_drawn(key, arrival);
                 }
             }
             TopicKind::Alive | TopicKind::Blend => {}
+        }
+    }
+
+    /// Draws a sample for the browsers and keeps it for the next browser,
+    /// unless it was decoded and found malformed (counted once, here).
+    fn keep_drawn(&mut self, key: TopicKey, arrival: Arrival) {
+        if !self.browsers() || self.draw(&key, &arrival) {
+            let name = format!("{}/{}", key.kind, key.name);
+            self.latest.insert(name, (key, arrival));
         }
     }
 
@@ -344,6 +364,7 @@ impl FrameBuilder {
             self.hub.frames_superseded.load(Ordering::Relaxed),
         );
         m.set_counter("samples_superseded", self.inbox.superseded());
+        m.set_counter("paced_superseded", self.paced.superseded());
         let rates = self.inbox.rates(now);
         if !self.browsers() {
             return;

@@ -46,6 +46,12 @@ pub struct DashboardArgs {
     /// announces itself in the namespace.
     #[arg(long)]
     pub blend_stream: Option<String>,
+    /// Most frames a second of each cloud, surrogate and smooth fit sent to
+    /// the browsers (the latest waits; arms, verdicts and nodes are not
+    /// paced): what a viewer needs, and what keeps a 30 Hz 300K-point stream
+    /// from costing the robot's cores.
+    #[arg(long, default_value_t = 10.0)]
+    pub max_rate: f64,
 }
 
 /// Where `--listen` serves unless told otherwise.
@@ -60,6 +66,10 @@ pub fn run(mut args: DashboardArgs) -> Result<()> {
     anyhow::ensure!(
         args.verdict_timeout.is_finite() && args.verdict_timeout > 0.0,
         "--verdict-timeout must be a positive number of seconds"
+    );
+    anyhow::ensure!(
+        args.max_rate.is_finite() && args.max_rate > 0.0 && args.max_rate <= 1000.0,
+        "--max-rate must be more than 0 and at most 1000 frames a second"
     );
     let arms = args
         .arm_files
@@ -80,6 +90,7 @@ pub fn run(mut args: DashboardArgs) -> Result<()> {
         arms,
         verdict_timeout_ns: (args.verdict_timeout * 1e9) as u64,
         blend_stream: args.blend_stream.clone(),
+        pace_ns: (1e9 / args.max_rate) as u64,
     };
     run_node(&common, "dashboard", move |ctx| {
         serve(ctx, listener, config)
