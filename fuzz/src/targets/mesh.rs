@@ -16,11 +16,15 @@ pub fn run(data: &[u8]) {
                     .collect(),
                 triangles: mesh.triangles.clone(),
             };
-            for (bytes, expected) in [
-                (mesh.to_obj(), &mesh),
-                (mesh.to_ply(true), &narrowed),
-                (mesh.to_ply(false), &narrowed),
-            ] {
+            // A coordinate beyond f32's range becomes infinite in PLY, which
+            // every reader refuses: only the OBJ round trip applies then.
+            let fits_f32 = narrowed.vertices.iter().flatten().all(|c| c.is_finite());
+            let mut trips = vec![(mesh.to_obj(), &mesh)];
+            if fits_f32 {
+                trips.push((mesh.to_ply(true), &narrowed));
+                trips.push((mesh.to_ply(false), &narrowed));
+            }
+            for (bytes, expected) in trips {
                 let again = parse_triangle_mesh(&bytes).expect("a written mesh reads back");
                 same(expected, &again, "meshes after a round trip");
             }
