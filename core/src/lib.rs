@@ -15,6 +15,7 @@ pub mod math;
 pub mod mesh;
 pub mod message;
 pub mod metrics;
+pub mod pace;
 pub mod query;
 pub mod scene;
 pub mod smooth;
