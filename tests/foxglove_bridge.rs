@@ -125,6 +125,8 @@ fn a_foxglove_client_sees_the_graph_and_drives_a_drop() {
         "hemisphere",
         "--part-size",
         "0.3",
+        "--centres",
+        "400",
     ];
     let _blend = node(&blend, &w);
     let (bridge, url) = bridge(&w);
