@@ -4,7 +4,7 @@
 
 use super::error::DashboardError;
 use crate::blend::BlendCommand;
-use crate::message::BlendCommandMessage;
+use crate::message::BlendRequest;
 use serde::Deserialize;
 
 /// Longest text frame a browser may send (a command is a few hundred bytes).
@@ -29,19 +29,8 @@ enum Wire {
     Blend {
         #[serde(default)]
         id: u64,
-        command: String,
-        #[serde(default)]
-        part: Option<String>,
-        #[serde(default)]
-        at: Option<[f64; 3]>,
-        #[serde(default)]
-        normal: Option<[f64; 3]>,
-        #[serde(default)]
-        lift: f64,
-        #[serde(default)]
-        spin: f64,
-        #[serde(default)]
-        tilt: [f64; 2],
+        #[serde(flatten)]
+        request: BlendRequest,
     },
     Options {
         point_budget: u64,
@@ -50,8 +39,7 @@ enum Wire {
 
 impl BrowserCommand {
     /// Decodes a text frame. Blend commands are checked by
-    /// [`BlendCommandMessage::command`] and [`BlendCommandMessage::check_part`],
-    /// the rules every blend command obeys.
+    /// [`BlendRequest::checked`], the rules every blend command obeys.
     pub fn parse(text: &str) -> Result<Self, DashboardError> {
         if text.len() > MAX_COMMAND_BYTES {
             return Err(DashboardError::CommandTooLong {
@@ -63,39 +51,15 @@ impl BrowserCommand {
             serde_json::from_str(text).map_err(|e| DashboardError::Command(e.to_string()))?;
         match wire {
             Wire::Options { point_budget } => Ok(Self::Options { point_budget }),
-            Wire::Blend {
-                id,
-                command,
-                part,
-                at,
-                normal,
-                lift,
-                spin,
-                tilt,
-            } => {
-                let msg = BlendCommandMessage {
-                    version: crate::message::SCHEMA_VERSION,
-                    stamp_ns: 0,
-                    sequence: 0,
-                    command,
-                    at,
-                    normal,
-                    part,
-                    lift,
-                    spin,
-                    tilt,
-                };
-                let invalid = |e: crate::message::MessageError| DashboardError::CommandField {
-                    field: "blend",
-                    reason: e.to_string(),
-                };
-                let command = msg.command().map_err(invalid)?;
-                msg.check_part().map_err(invalid)?;
-                Ok(Self::Blend {
-                    id,
-                    command,
-                    part: msg.part,
-                })
+            Wire::Blend { id, request } => {
+                let (command, part) =
+                    request
+                        .checked()
+                        .map_err(|e| DashboardError::CommandField {
+                            field: "blend",
+                            reason: e.to_string(),
+                        })?;
+                Ok(Self::Blend { id, command, part })
             }
         }
     }

@@ -54,6 +54,16 @@ impl BlendPalette {
             stream,
         })
     }
+
+    /// Puts `self` in `slot` unless a `wanted` stream is named and this is
+    /// another blend node's; true if the slot changed.
+    pub fn adopt(self, slot: &mut Option<Self>, wanted: Option<&str>) -> bool {
+        if wanted.is_some_and(|w| w != self.stream) || slot.as_ref() == Some(&self) {
+            return false;
+        }
+        *slot = Some(self);
+        true
+    }
 }
 
 /// The first frame of a connection (and again whenever the palette changes).
@@ -87,16 +97,8 @@ pub struct CloudFrameInput<'v, 'a> {
 /// coordinate (as every consumer of the schema does).
 pub fn cloud_frame(input: CloudFrameInput<'_, '_>) -> Result<Vec<u8>, MessageError> {
     let view = input.view;
+    view.check_finite_points()?;
     let floats = view.points.as_chunks::<4>().0;
-    if let Some(index) = floats
-        .iter()
-        .position(|c| !f32::from_le_bytes(*c).is_finite())
-    {
-        return Err(MessageError::NonFinite {
-            field: "points",
-            index: index / 3,
-        });
-    }
     let keep = Decimation::new(view.len(), input.budget);
     let mut positions = Vec::with_capacity(3 * keep.kept());
     let (mut min, mut max) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
@@ -150,7 +152,7 @@ pub fn surrogate_frame(
         .map(|m| {
             let c = &m.certificate;
             json!({
-                "side": side_name(m.side),
+                "side": m.side.name(),
                 "vertices": m.positions.len(),
                 "triangles": m.indices.len() / 3,
                 "certificate": {
@@ -170,7 +172,7 @@ pub fn surrogate_frame(
         .field("grid", vec![msg.domain.cols, msg.domain.rows])
         .field("surfaces", surfaces);
     for m in meshes {
-        let side = side_name(m.side);
+        let side = m.side.name();
         frame = frame
             .array(
                 &format!("{side}.positions"),
@@ -179,13 +181,6 @@ pub fn surrogate_frame(
             .array(&format!("{side}.indices"), ArrayData::U32(m.indices));
     }
     frame.encode()
-}
-
-fn side_name(side: crate::surrogate::Side) -> &'static str {
-    match side {
-        crate::surrogate::Side::Upper => "upper",
-        crate::surrogate::Side::Lower => "lower",
-    }
 }
 
 /// A smooth fit tessellated, `per_patch` quads per patch side.
@@ -494,6 +489,11 @@ mod tests {
             .insert("blend.parts".into(), "hemisphere,scan.ply".into());
         let palette = BlendPalette::from_status(&status).unwrap();
         assert_eq!(palette.output, "blend");
+        let mut slot = None;
+        assert!(!palette.clone().adopt(&mut slot, Some("other")));
+        assert!(palette.clone().adopt(&mut slot, Some("blend")));
+        assert!(!palette.clone().adopt(&mut slot, None));
+        assert_eq!(slot.as_ref(), Some(&palette));
         assert_eq!(palette.parts, vec!["hemisphere", "scan.ply"]);
         let hello = Hello {
             namespace: "demo",

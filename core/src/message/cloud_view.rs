@@ -176,6 +176,22 @@ impl<'a> CloudView<'a> {
         Ok(view)
     }
 
+    /// Refuses a NaN or an infinity among the points, naming the first
+    /// (for consumers that read the blob where it lies instead of copying it).
+    pub fn check_finite_points(&self) -> Result<(), MessageError> {
+        let floats = self.points.as_chunks::<4>().0;
+        match floats
+            .iter()
+            .position(|c| !f32::from_le_bytes(*c).is_finite())
+        {
+            Some(index) => Err(MessageError::NonFinite {
+                field: "points",
+                index: index / 3,
+            }),
+            None => Ok(()),
+        }
+    }
+
     /// Number of points.
     pub fn len(&self) -> usize {
         self.points.len() / 12

@@ -4,6 +4,7 @@
 //! `frombuffer`). Pure encode/decode with validation; transport lives in `nodes/`.
 
 mod blend_command;
+mod blend_request;
 mod blob;
 mod channels;
 mod cloud;
@@ -19,6 +20,7 @@ mod surrogate;
 mod topic;
 
 pub use blend_command::BlendCommandMessage;
+pub use blend_request::{BlendRequest, MAX_REQUEST_BYTES};
 pub use blob::{encode_into, encoded_len};
 pub use channels::{
     blobs_to_channels, channels_to_blobs, check_channels, check_point_channels, ChannelBlobs,

@@ -21,6 +21,14 @@ pub enum Side {
 }
 
 impl Side {
+    /// `upper` or `lower`, as serialised.
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Upper => "upper",
+            Side::Lower => "lower",
+        }
+    }
+
     /// `+1` for upper, `-1` for lower: the gap is `sign * (f - w)`.
     #[inline]
     pub fn sign(self) -> f64 {

@@ -9,6 +9,7 @@
 //! consumer's CPU share, all in one run so that the ratios compare like with
 //! like on a noisy machine.
 
+use super::foxglove_clients::FoxgloveClients;
 use super::graph::{tree_cpu_seconds, BenchGraph};
 use super::BenchArgs;
 use anyhow::{bail, Context, Result};
@@ -33,6 +34,10 @@ enum Consumer {
     DashboardReaders {
         readers: usize,
     },
+    /// The Foxglove bridge with clients subscribed to every channel.
+    Foxglove {
+        clients: usize,
+    },
 }
 
 impl Consumer {
@@ -44,6 +49,9 @@ impl Consumer {
             }
             Self::DashboardReaders { readers } => {
                 format!("dashboard, {readers} WebSocket reader(s) (browsers elsewhere)")
+            }
+            Self::Foxglove { clients } => {
+                format!("foxglove bridge, {clients} client(s) subscribed to everything")
             }
         }
     }
@@ -133,6 +141,17 @@ async fn measure_all(args: &BenchArgs, browsers: &[usize], seconds: f64) -> Resu
         eprintln!("  {count} reader(s) took {frames} frames");
     }
     graph.stop("dashboard");
+    let port = free_port()?;
+    let listen = format!("127.0.0.1:{port}");
+    let bridge = graph.spawn("foxglove", "foxglove", &["--listen", &listen], None)?;
+    for clients in [0, 1] {
+        let connected = FoxgloveClients::connect(&format!("ws://{listen}"), clients).await?;
+        let consumer = Consumer::Foxglove { clients };
+        rows.push(measure(&heard, consumer, seconds, Some((bridge, None))).await?);
+        let frames = connected.stop().await;
+        eprintln!("  {clients} Foxglove client(s) took {frames} frames");
+    }
+    graph.stop("foxglove");
     rows.push(measure(&heard, Consumer::Nothing, seconds, None).await?);
     graph.stop_all();
     Ok(rows)

@@ -5,6 +5,7 @@ mod can;
 mod consumers;
 mod devices;
 mod encode;
+mod foxglove_clients;
 mod graph;
 mod latency;
 mod paper000;

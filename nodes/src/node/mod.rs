@@ -10,6 +10,7 @@ mod device;
 mod device_sim;
 mod device_status;
 mod fit;
+mod foxglove_bridge;
 mod guard;
 mod list;
 mod metrics;
@@ -18,6 +19,7 @@ mod scan_publisher;
 mod scanner;
 mod serial;
 mod smooth;
+mod viewer;
 
 pub use arm::ArmArgs;
 pub use blend::BlendNodeArgs;
@@ -25,6 +27,7 @@ pub use can::CanNodeArgs;
 pub use dashboard::DashboardArgs;
 pub use device_sim::DeviceSimArgs;
 pub use fit::FitNodeArgs;
+pub use foxglove_bridge::FoxgloveArgs;
 pub use guard::GuardArgs;
 pub use list::NodeListArgs;
 pub use metrics::NodeMetrics;
@@ -58,6 +61,8 @@ pub enum NodeCommand {
     Smooth(SmoothNodeArgs),
     /// The live monitoring page: serves it over HTTP and streams the graph to browsers.
     Dashboard(DashboardArgs),
+    /// The Foxglove WebSocket bridge: the graph in Foxglove or Lichtblick, drops from their Publish panel.
+    Foxglove(FoxgloveArgs),
     /// List the nodes alive in a namespace with their status.
     List(NodeListArgs),
 }
@@ -74,6 +79,7 @@ pub fn run(command: NodeCommand) -> Result<()> {
         NodeCommand::Blend(args) => blend::run(args),
         NodeCommand::Smooth(args) => smooth::run(args),
         NodeCommand::Dashboard(args) => dashboard::run(args),
+        NodeCommand::Foxglove(args) => foxglove_bridge::run(args),
         NodeCommand::List(args) => list::run(args),
     }
 }

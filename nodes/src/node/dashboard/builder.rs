@@ -4,8 +4,8 @@
 //! browser is connected; with none, the dashboard costs the graph nothing but
 //! its subscriptions.
 
-use super::hub::{Arrival, Hub};
-use super::inbox::Inbox;
+use super::hub::Hub;
+use crate::node::viewer::{Arrival, Inbox};
 use crate::node::NodeContext;
 use crate::transport::monotonic_ns;
 use shroud_core::dashboard::{
@@ -301,27 +301,18 @@ impl FrameBuilder {
     /// A blend node announced its palette: adopt it if it is the one to drive
     /// and it changed, and greet every browser again with it.
     fn on_palette(&mut self, palette: BlendPalette) {
-        if self
-            .config
-            .blend_stream
-            .as_ref()
-            .is_some_and(|s| *s != palette.stream)
-        {
-            return;
-        }
-        {
-            let mut current = self
+        let changed = palette.adopt(
+            &mut self
                 .shared
                 .palette
                 .lock()
-                .unwrap_or_else(|p| p.into_inner());
-            if current.as_ref() == Some(&palette) {
-                return;
-            }
-            *current = Some(palette);
+                .unwrap_or_else(|p| p.into_inner()),
+            self.config.blend_stream.as_deref(),
+        );
+        if changed {
+            self.refresh_hello();
+            self.hub.broadcast("hello", self.shared_hello());
         }
-        self.refresh_hello();
-        self.hub.broadcast("hello", self.shared_hello());
     }
 
     fn refresh_hello(&self) {

@@ -5,8 +5,8 @@
 use super::assets;
 use super::builder::Shared;
 use super::hub::{Browser, Hub};
+use crate::node::viewer::BlendSender;
 use crate::node::NodeContext;
-use crate::transport::unix_ns;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::extract::{Path, State};
 use axum::http::{header, StatusCode};
@@ -14,11 +14,8 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use axum::Router;
 use shroud_core::dashboard::{blend_result_frame, error_frame, BrowserCommand};
-use shroud_core::message::{BlendCommandMessage, TopicKind};
-use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, Mutex};
-use zenoh::Wait;
+use std::sync::atomic::Ordering;
+use std::sync::Arc;
 
 /// What every request handler shares.
 #[derive(Clone)]
@@ -105,9 +102,15 @@ async fn on_command(http: &Http, browser: &Browser, text: &str) {
             browser.set_budget(budget);
         }
         Ok(BrowserCommand::Blend { id, command, part }) => {
+            let palette = http
+                .shared
+                .palette
+                .lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .clone();
             let outcome = http
                 .blend
-                .send(&http.ctx, &http.shared, &command, part.as_deref());
+                .send(&http.ctx, palette.as_ref(), &command, part.as_deref());
             browser.put(
                 &format!("blend_result/{id}"),
                 Arc::new(blend_result_frame(id, outcome)),
@@ -121,56 +124,4 @@ fn refuse(http: &Http, browser: &Browser, why: &str) {
     http.ctx.drop_malformed("browser", &why);
     let n = http.ctx.metrics.counter("dropped_malformed");
     browser.put(&format!("error/{n}"), Arc::new(error_frame(why)));
-}
-
-/// Publishes browsers' blend commands to the blend node of the palette.
-#[derive(Default)]
-pub struct BlendSender {
-    sequence: AtomicU64,
-    publishers: Mutex<BTreeMap<String, zenoh::pubsub::Publisher<'static>>>,
-}
-
-impl BlendSender {
-    pub fn send(
-        &self,
-        ctx: &NodeContext,
-        shared: &Shared,
-        command: &shroud_core::blend::BlendCommand,
-        part: Option<&str>,
-    ) -> Result<(), String> {
-        let palette = shared
-            .palette
-            .lock()
-            .unwrap_or_else(|p| p.into_inner())
-            .clone();
-        let Some(palette) = palette else {
-            return Err("no blend node in this graph (start one: shroud node blend)".into());
-        };
-        if let Some(part) = part {
-            if !palette.parts.iter().any(|p| p == part) {
-                return Err(format!(
-                    "the blend node has no part {part:?} (it has {})",
-                    palette.parts.join(", ")
-                ));
-            }
-        }
-        let sequence = self.sequence.fetch_add(1, Ordering::Relaxed);
-        let mut msg = BlendCommandMessage::new(unix_ns(), sequence, command);
-        msg.part = part.map(String::from);
-        let bytes = msg.to_bytes().map_err(|e| e.to_string())?;
-        let mut publishers = self.publishers.lock().unwrap_or_else(|p| p.into_inner());
-        if !publishers.contains_key(&palette.stream) {
-            let publisher = ctx
-                .publisher(TopicKind::Blend, &palette.stream)
-                .map_err(|e| format!("{e:#}"))?;
-            publishers.insert(palette.stream.clone(), publisher);
-        }
-        let publisher = &publishers[&palette.stream];
-        publisher
-            .put(bytes)
-            .wait()
-            .map_err(|e| format!("publish: {e}"))?;
-        ctx.metrics.add("blend_commands", 1);
-        Ok(())
-    }
 }

@@ -8,7 +8,6 @@ use std::collections::BTreeSet;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use tokio::sync::Notify;
-use zenoh::bytes::ZBytes;
 
 /// An encoded frame, shared by every browser that gets it.
 pub type SharedFrame = Arc<Vec<u8>>;
@@ -134,12 +133,4 @@ impl Hub {
             self.frames_superseded.fetch_add(1, Ordering::Relaxed);
         }
     }
-}
-
-/// A received sample, kept until the frame builder takes it.
-#[derive(Clone)]
-pub struct Arrival {
-    pub payload: ZBytes,
-    /// This host's monotonic clock at receipt.
-    pub received_ns: u64,
 }

@@ -9,25 +9,21 @@ mod assets;
 mod builder;
 mod http;
 mod hub;
-mod inbox;
 
 use super::arm_file::read_arm_file;
 use super::runtime::{run_node, NodeCommon, NodeContext};
+use super::viewer::{subscribe_drawables, watch_tokens, BlendSender, Inbox};
 use crate::args::take_web_listen;
 use anyhow::{Context, Result};
 use builder::{BuilderConfig, FrameBuilder, Shared};
 use clap::Args;
-use http::{BlendSender, Http};
+use http::Http;
 use hub::Hub;
-use inbox::Inbox;
-use shroud_core::message::{TopicKey, TopicKind};
 use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::sync::mpsc;
 use std::sync::Arc;
 use std::time::Duration;
-use zenoh::sample::SampleKind;
-use zenoh::Wait;
 
 #[derive(Debug, Clone, Args)]
 pub struct DashboardArgs {
@@ -109,7 +105,7 @@ fn serve(
         Arc::new(Inbox::new()),
         Arc::new(Shared::default()),
     );
-    let _subscribers = subscribe(&ctx, &inbox)?;
+    let _subscribers = subscribe_drawables(&ctx, &inbox)?;
     let (tokens_tx, tokens) = mpsc::channel();
     let _tokens = watch_tokens(&ctx, tokens_tx)?;
     let builder = FrameBuilder::new(ctx.clone(), hub.clone(), inbox, shared.clone(), config);
@@ -147,48 +143,4 @@ async fn serve_http(listener: std::net::TcpListener, http: Http) -> Result<()> {
         })
         .await
         .context("the dashboard's HTTP server failed")
-}
-
-/// Every drawable or reported topic of the namespace into the inbox.
-fn subscribe(ctx: &NodeContext, inbox: &Arc<Inbox>) -> Result<Vec<zenoh::pubsub::Subscriber<()>>> {
-    [
-        TopicKind::Cloud,
-        TopicKind::Surrogate,
-        TopicKind::Smooth,
-        TopicKind::Joints,
-        TopicKind::Collision,
-        TopicKind::Status,
-    ]
-    .into_iter()
-    .map(|kind| {
-        let key = ctx.key(kind, "*")?;
-        let inbox = inbox.clone();
-        ctx.session
-            .declare_subscriber(&key)
-            .callback(move |sample| {
-                inbox.push(sample.key_expr().as_str(), sample.payload().clone())
-            })
-            .wait()
-            .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))
-    })
-    .collect()
-}
-
-/// Liveliness tokens of the namespace's nodes, present ones first (history).
-fn watch_tokens(
-    ctx: &NodeContext,
-    tokens: mpsc::Sender<(String, bool)>,
-) -> Result<zenoh::pubsub::Subscriber<()>> {
-    let key = ctx.key(TopicKind::Alive, "*")?;
-    ctx.session
-        .liveliness()
-        .declare_subscriber(&key)
-        .history(true)
-        .callback(move |sample| {
-            if let Some(topic) = TopicKey::parse(sample.key_expr().as_str()) {
-                let _ = tokens.send((topic.name, sample.kind() == SampleKind::Put));
-            }
-        })
-        .wait()
-        .map_err(|e| anyhow::anyhow!("liveliness {key}: {e}"))
 }

@@ -1,10 +1,9 @@
-//! What the dashboard hears from the graph: every sample lands, from zenoh's
+//! What a viewer node hears from the graph: every sample lands, from zenoh's
 //! callback, in one slot per key (a newer sample of a key replaces the one the
-//! frame builder has not taken yet) and in the per-topic traffic counts. The
+//! viewer has not taken yet) and in the per-topic traffic counts. The
 //! callback never decodes nor waits: a 300K-point cloud at 30 Hz costs it a
 //! slot swap.
 
-use super::hub::Arrival;
 use crate::transport::monotonic_ns;
 use shroud_core::backlog::LatestByKey;
 use shroud_core::dashboard::TopicRate;
@@ -32,6 +31,14 @@ struct Traffic {
     reported: (u64, u64),
 }
 
+/// A received sample, kept until the viewer takes it.
+#[derive(Clone)]
+pub struct Arrival {
+    pub payload: ZBytes,
+    /// This host's monotonic clock at receipt.
+    pub received_ns: u64,
+}
+
 /// See the module documentation.
 pub struct Inbox {
     pending: Mutex<LatestByKey<TopicKey, Arrival>>,
@@ -52,7 +59,7 @@ impl Inbox {
     pub fn push(&self, key: &str, payload: ZBytes) {
         let now = monotonic_ns();
         let Some(topic) = TopicKey::parse(key) else {
-            return; // not a shroud topic: nothing the page can show
+            return; // not a shroud topic: nothing a viewer can show
         };
         self.count(&topic, payload.len() as u64, now);
         lock(&self.pending).put(
@@ -90,7 +97,7 @@ impl Inbox {
         pending.take()
     }
 
-    /// Samples replaced before the frame builder took them.
+    /// Samples replaced before the viewer took them.
     pub fn superseded(&self) -> u64 {
         lock(&self.pending).superseded()
     }

@@ -1,0 +1,210 @@
+//! The posed arm as a `foxglove.SceneUpdate` (one entity per link,
+//! `arm/<arm>/<link>`, its spheres and capsules coloured by the link's
+//! clearance band) and its links as `foxglove.FrameTransforms` (each link's
+//! frame `<arm>/<link>` in [`WORLD_FRAME`]). Foxglove has no capsule: each is a
+//! cylinder between its end centres and a sphere at each end.
+
+use super::geometry::{color, pose, quaternion, timestamp, vector, WORLD_FRAME};
+use foxglove::messages::{
+    CylinderPrimitive, FrameTransform, FrameTransforms, KeyValuePair, SceneEntity, SceneUpdate,
+    SpherePrimitive,
+};
+use glam::{DQuat, DVec3};
+use shroud_core::message::CollisionMessage;
+use shroud_core::scene::{ClearanceBand, PosedArm};
+use std::collections::BTreeMap;
+
+/// Linear RGBA of a link no verdict speaks for (no guard yet, or a link the
+/// guard does not report): neutral grey.
+pub const NO_VERDICT_RGBA: [f64; 4] = [0.6, 0.6, 0.6, 0.6];
+
+/// Each link's band in the guard's verdict `msg`.
+pub fn link_bands(msg: &CollisionMessage) -> BTreeMap<String, ClearanceBand> {
+    msg.links
+        .iter()
+        .map(|l| (l.link.clone(), ClearanceBand::of(l, msg.stop_distance)))
+        .collect()
+}
+
+/// `arm`'s collision shapes at `stamp_ns`, coloured by `bands` (a link
+/// absent from it is [`NO_VERDICT_RGBA`]).
+pub fn arm_scene(
+    arm: &PosedArm,
+    bands: &BTreeMap<String, ClearanceBand>,
+    stamp_ns: u64,
+) -> SceneUpdate {
+    let mut entities: Vec<(SceneEntity, [f64; 4])> = arm
+        .links
+        .iter()
+        .map(|link| {
+            let band = bands.get(&link.name);
+            let metadata = band
+                .map(|b| KeyValuePair {
+                    key: "band".into(),
+                    value: b.name().into(),
+                })
+                .into_iter()
+                .collect();
+            let entity = SceneEntity {
+                timestamp: Some(timestamp(stamp_ns)),
+                frame_id: WORLD_FRAME.into(),
+                id: format!("arm/{}/{}", arm.arm, link.name),
+                metadata,
+                ..Default::default()
+            };
+            (entity, band.map_or(NO_VERDICT_RGBA, |b| b.rgba()))
+        })
+        .collect();
+    // Shapes name their link by index into `links` (core's PosedArm).
+    for (link, centre, radius) in arm.spheres() {
+        if let Some((e, rgba)) = entities.get_mut(link) {
+            e.spheres.push(sphere(centre, radius, *rgba));
+        }
+    }
+    for (link, a, b, radius) in arm.capsules() {
+        if let Some((e, rgba)) = entities.get_mut(link) {
+            e.cylinders.push(cylinder(a, b, radius, *rgba));
+            e.spheres.push(sphere(a, radius, *rgba));
+            e.spheres.push(sphere(b, radius, *rgba));
+        }
+    }
+    SceneUpdate {
+        deletions: Vec::new(),
+        entities: entities.into_iter().map(|(e, _)| e).collect(),
+    }
+}
+
+fn sphere(centre: DVec3, radius: f64, rgba: [f64; 4]) -> SpherePrimitive {
+    SpherePrimitive {
+        pose: Some(pose(centre, DQuat::IDENTITY)),
+        size: Some(vector(DVec3::splat(2.0 * radius))),
+        color: Some(color(rgba)),
+    }
+}
+
+/// A cylinder of `radius` from `a` to `b`: Foxglove's cylinder stands on its
+/// local z axis, centred on its pose, `size.z` tall.
+fn cylinder(a: DVec3, b: DVec3, radius: f64, rgba: [f64; 4]) -> CylinderPrimitive {
+    let axis = b - a;
+    let rotation = axis.try_normalize().map_or(DQuat::IDENTITY, |dir| {
+        DQuat::from_rotation_arc(DVec3::Z, dir)
+    });
+    CylinderPrimitive {
+        pose: Some(pose((a + b) / 2.0, rotation)),
+        size: Some(vector(DVec3::new(
+            2.0 * radius,
+            2.0 * radius,
+            axis.length(),
+        ))),
+        bottom_scale: 1.0,
+        top_scale: 1.0,
+        color: Some(color(rgba)),
+    }
+}
+
+/// Each link's frame, `<arm>/<link>`, in [`WORLD_FRAME`] at `stamp_ns`.
+pub fn arm_transforms(arm: &PosedArm, stamp_ns: u64) -> FrameTransforms {
+    FrameTransforms {
+        transforms: arm
+            .links
+            .iter()
+            .map(|link| FrameTransform {
+                timestamp: Some(timestamp(stamp_ns)),
+                parent_frame_id: WORLD_FRAME.into(),
+                child_frame_id: format!("{}/{}", arm.arm, link.name),
+                translation: Some(vector(link.origin)),
+                rotation: Some(quaternion(link.rotation)),
+            })
+            .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shroud_core::guard::ArmFile;
+    use shroud_core::message::JointStateMessage;
+    use shroud_core::scene::pose_arm;
+
+    const ARM: &str = r#"
+name = "two"
+[[links]]
+name = "base"
+spheres = [{ centre = [0.0, 0.0, 0.0], radius = 0.1 }]
+[[links]]
+name = "tip"
+capsules = [{ a = [0.0, 0.0, 0.0], b = [1.0, 0.0, 0.0], radius = 0.05 }]
+[[joints]]
+name = "pan"
+kind = "revolute"
+xyz = [0.0, 0.0, 1.0]
+axis = [0.0, 0.0, 1.0]
+"#;
+
+    fn posed() -> PosedArm {
+        let arm = ArmFile::from_toml_str(ARM).unwrap().arm;
+        let joints = JointStateMessage::new(1, 2, "two", vec!["pan".into()], vec![0.0]);
+        pose_arm(&arm, &joints).unwrap()
+    }
+
+    fn rgba(c: &Option<foxglove::messages::Color>) -> [f64; 4] {
+        let c = c.clone().unwrap();
+        [c.r, c.g, c.b, c.a]
+    }
+
+    #[test]
+    fn a_capsule_is_a_cylinder_between_two_spheres_coloured_by_band() {
+        let arm = posed();
+        let bands = BTreeMap::from([("tip".to_string(), ClearanceBand::Near)]);
+        let update = arm_scene(&arm, &bands, 3);
+        let ids: Vec<&str> = update.entities.iter().map(|e| e.id.as_str()).collect();
+        assert_eq!(ids, ["arm/two/base", "arm/two/tip"]);
+        let (base, tip) = (&update.entities[0], &update.entities[1]);
+        assert_eq!((base.spheres.len(), base.cylinders.len()), (1, 0));
+        assert_eq!(rgba(&base.spheres[0].color), NO_VERDICT_RGBA);
+        assert!(base.metadata.is_empty());
+        assert_eq!((tip.spheres.len(), tip.cylinders.len()), (2, 1));
+        assert_eq!(tip.metadata[0].value, "near");
+        let cyl = &tip.cylinders[0];
+        assert_eq!(rgba(&cyl.color), ClearanceBand::Near.rgba());
+        let size = cyl.size.clone().unwrap();
+        assert!((size.x - 0.1).abs() < 1e-12 && (size.z - 1.0).abs() < 1e-12);
+        // The capsule runs along x at height 1: the cylinder's centre is its
+        // middle and its z axis turns onto x.
+        let p = cyl.pose.clone().unwrap();
+        let centre = p.position.unwrap();
+        assert!((centre.x - 0.5).abs() < 1e-12 && (centre.z - 1.0).abs() < 1e-12);
+        let q = p.orientation.unwrap();
+        let axis = DQuat::from_xyzw(q.x, q.y, q.z, q.w) * DVec3::Z;
+        assert!(axis.distance(DVec3::X) < 1e-12);
+        let ends: Vec<f64> = tip
+            .spheres
+            .iter()
+            .map(|s| s.pose.clone().unwrap().position.unwrap().x)
+            .collect();
+        assert_eq!(ends, [0.0, 1.0]);
+        assert!((tip.spheres[0].size.clone().unwrap().y - 0.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn links_become_frames_in_the_world_and_verdicts_become_bands() {
+        let arm = posed();
+        let tf = arm_transforms(&arm, 5);
+        let children: Vec<&str> = tf
+            .transforms
+            .iter()
+            .map(|t| t.child_frame_id.as_str())
+            .collect();
+        assert_eq!(children, ["two/base", "two/tip"]);
+        assert!(tf
+            .transforms
+            .iter()
+            .all(|t| t.parent_frame_id == WORLD_FRAME));
+        assert_eq!(tf.transforms[1].translation.clone().unwrap().z, 1.0);
+        let msg =
+            crate::to_foxglove::fixtures::collision(&[("base", 0.01, false), ("tip", 1.0, true)]);
+        let bands = link_bands(&msg);
+        assert_eq!(bands["base"], ClearanceBand::Stop);
+        assert_eq!(bands["tip"], ClearanceBand::Unobserved);
+    }
+}

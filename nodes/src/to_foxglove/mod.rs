@@ -1,0 +1,63 @@
+//! shroud's messages as Foxglove's well-known schemas (`foxglove.PointCloud`,
+//! `foxglove.SceneUpdate`, `foxglove.FrameTransforms`) and as JSON views whose
+//! numeric fields the Plot panel reads: what the Foxglove bridge serves and
+//! what a recording stores beside the raw messages. Pure conversions of decoded
+//! messages, no server and no I/O; the geometry itself (decimation, trimmed
+//! meshes, the posed arm, clearance bands) is `shroud_core::scene`'s.
+
+mod arm;
+mod cloud;
+mod geometry;
+mod json;
+mod surrogate;
+mod topics;
+
+pub use arm::{arm_scene, arm_transforms, link_bands, NO_VERDICT_RGBA};
+pub use cloud::point_cloud;
+pub use geometry::{timestamp, WORLD_FRAME};
+pub use json::{
+    certificate_view, status_view, verdict_view, CertificateView, LinkView, StatusView,
+    SurfaceCertificate, VerdictView,
+};
+pub use surrogate::{surface_rgba, surrogate_scene};
+pub use topics::{
+    arm_scene_topic, arm_transforms_topic, certificate_topic, cloud_topic, status_topic,
+    surrogate_topic, verdict_topic, BLEND_TOPIC,
+};
+
+#[cfg(test)]
+pub(crate) mod fixtures {
+    //! Messages the conversions' tests share.
+
+    use shroud_core::message::{CollisionMessage, GuardVerdict, LinkClearance, SCHEMA_VERSION};
+
+    /// A clear verdict of arm `arm` with these (link, clearance, unobserved).
+    pub fn collision(links: &[(&str, f64, bool)]) -> CollisionMessage {
+        CollisionMessage {
+            version: SCHEMA_VERSION,
+            joints_stamp_ns: 1,
+            joints_sequence: 2,
+            arm: "arm".into(),
+            surrogate_stamp_ns: 3,
+            surrogate_sequence: 4,
+            surrogate_age_ns: 5,
+            views: 1,
+            verdict: GuardVerdict::Clear,
+            stop: false,
+            reason: String::new(),
+            stop_distance: 0.05,
+            min_clearance: 0.2,
+            closest_link: links.first().map_or("", |l| l.0).into(),
+            unobserved: false,
+            links: links
+                .iter()
+                .map(|&(link, clearance, unobserved)| LinkClearance {
+                    link: link.into(),
+                    clearance,
+                    unobserved,
+                })
+                .collect(),
+            check_ns: 900,
+        }
+    }
+}
