@@ -16,6 +16,7 @@ pub mod mesh;
 pub mod message;
 pub mod metrics;
 pub mod query;
+pub mod record;
 pub mod scene;
 pub mod smooth;
 pub mod spline;
