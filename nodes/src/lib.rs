@@ -11,4 +11,5 @@ pub mod introspect;
 pub mod launch;
 pub mod node;
 pub mod parse;
+pub mod recording;
 pub mod transport;

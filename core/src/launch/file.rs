@@ -190,7 +190,7 @@ pub const LAUNCHER_NAME: &str = "launcher";
 
 /// The node programs `run` may name: `shroud node <kind>` (nodes/ checks that
 /// this list is exactly its subcommands).
-pub const NODE_KINDS: [&str; 10] = [
+pub const NODE_KINDS: [&str; 12] = [
     "scanner",
     "fit",
     "guard",
@@ -201,6 +201,8 @@ pub const NODE_KINDS: [&str; 10] = [
     "smooth",
     "device-sim",
     "dashboard",
+    "record",
+    "replay",
 ];
 
 /// The options the launcher passes every child itself; `args` may not repeat

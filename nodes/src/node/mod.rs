@@ -58,6 +58,10 @@ pub enum NodeCommand {
     Smooth(SmoothNodeArgs),
     /// The live monitoring page: serves it over HTTP and streams the graph to browsers.
     Dashboard(DashboardArgs),
+    /// Record the namespace's messages into an MCAP file (as `shroud record`).
+    Record(crate::recording::RecordArgs),
+    /// Publish an MCAP recording's shroud messages, in place of a sensor (as `shroud replay`).
+    Replay(crate::recording::ReplayArgs),
     /// List the nodes alive in a namespace with their status.
     List(NodeListArgs),
 }
@@ -74,6 +78,8 @@ pub fn run(command: NodeCommand) -> Result<()> {
         NodeCommand::Blend(args) => blend::run(args),
         NodeCommand::Smooth(args) => smooth::run(args),
         NodeCommand::Dashboard(args) => dashboard::run(args),
+        NodeCommand::Record(args) => crate::recording::record(args),
+        NodeCommand::Replay(args) => crate::recording::replay(args),
         NodeCommand::List(args) => list::run(args),
     }
 }
