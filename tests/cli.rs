@@ -762,3 +762,43 @@ fn bad_guard_settings_are_named_errors() {
         "--resume-after",
     );
 }
+
+/// `shroud mcap info` and `shroud replay` refuse files that are not MCAP
+/// recordings, and `shroud record` its bad options, before anything starts:
+/// each a named error and a non-zero exit.
+#[test]
+fn bad_recordings_and_recording_options_are_named_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = path(dir.path(), "missing.mcap");
+    let empty = write_file(dir.path(), "empty.mcap", b"");
+    let foreign = write_file(
+        dir.path(),
+        "cloud.mcap",
+        b"ply\nformat ascii 1.0\nend_header\n",
+    );
+    for command in [&["mcap", "info"][..], &["replay"][..]] {
+        let run = |file: &Path| shroud(&[command, &[s(file)]].concat());
+        fails_with(run(&missing), "cannot open");
+        fails_with(run(&empty), "is empty");
+        fails_with(run(&foreign), "not an MCAP file");
+    }
+    let out = s(&path(dir.path(), "run.mcap")).to_owned();
+    let record = |extra: &[&str]| shroud(&[&["record", "-o", &out][..], extra].concat());
+    fails_with(record(&["--topics", "clouds/*"]), "not a topic kind");
+    fails_with(record(&["--topics", "cloud/[ab]"]), "--topics");
+    fails_with(record(&["--topics", "alive/*"]), "liveliness");
+    fails_with(record(&["--split-size", "0"]), "--split-size");
+    fails_with(record(&["--split-size", "1e12"]), "--split-size");
+    fails_with(record(&["--duration", "-1"]), "--duration");
+    fails_with(record(&["--queue-size", "0"]), "--queue-size");
+    let taken = write_file(dir.path(), "taken.mcap", b"x");
+    fails_with(
+        shroud(&["record", "-o", s(&taken)]),
+        "exists (give --overwrite",
+    );
+    fails_with(
+        shroud(&["record", "-o", "/no/such/dir/run.mcap"]),
+        "cannot create",
+    );
+    fails_with(shroud(&["replay", s(&missing), "--speed", "0"]), "--speed");
+}

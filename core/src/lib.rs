@@ -17,6 +17,7 @@ pub mod message;
 pub mod metrics;
 pub mod pace;
 pub mod query;
+pub mod record;
 pub mod scene;
 pub mod smooth;
 pub mod spline;

@@ -2,7 +2,7 @@
 //! any error into a message and a non-zero exit.
 
 use clap::Parser;
-use shroud_nodes::cli::{run, Cli};
+use shroud_nodes::cli::{run, Cli, ExitWith};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -34,7 +34,10 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: {error:#}");
-            ExitCode::FAILURE
+            match error.downcast_ref::<ExitWith>() {
+                Some(exit) => ExitCode::from(exit.code),
+                None => ExitCode::FAILURE,
+            }
         }
     }
 }

@@ -12,4 +12,5 @@ pub mod launch;
 pub mod node;
 pub mod parse;
 pub mod to_foxglove;
+pub mod recording;
 pub mod transport;

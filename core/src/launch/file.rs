@@ -190,7 +190,7 @@ pub const LAUNCHER_NAME: &str = "launcher";
 
 /// The node programs `run` may name: `shroud node <kind>` (nodes/ checks that
 /// this list is exactly its subcommands).
-pub const NODE_KINDS: [&str; 11] = [
+pub const NODE_KINDS: [&str; 13] = [
     "scanner",
     "fit",
     "guard",
@@ -202,6 +202,8 @@ pub const NODE_KINDS: [&str; 11] = [
     "device-sim",
     "dashboard",
     "foxglove",
+    "record",
+    "replay",
 ];
 
 /// The options the launcher passes every child itself; `args` may not repeat

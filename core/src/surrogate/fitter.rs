@@ -329,6 +329,40 @@ mod tests {
         }
     }
 
+    /// A warm-started sequence too: the state a frame leaves is the same
+    /// bits whatever the thread count, so a replayed stream of clouds gives
+    /// the recorded surrogates (README, "Record and replay").
+    #[test]
+    fn warm_started_sequences_are_independent_of_the_thread_count() {
+        let base = cloud(20_000);
+        let frames: Vec<Vec<[f32; 3]>> = (0..4)
+            .map(|k| {
+                let dz = 0.05 * k as f32;
+                base.iter()
+                    .map(|p| [p[0], p[1], p[2] + dz * p[0]])
+                    .collect()
+            })
+            .collect();
+        let options = FitOptions {
+            sides: Sides::Sandwich,
+            ..Default::default()
+        };
+        let fit_with = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut fitter = SurrogateFitter::new(options.clone()).unwrap();
+                frames
+                    .iter()
+                    .map(|f| format!("{:?}", fitter.fit(f).unwrap()))
+                    .collect::<Vec<_>>()
+            })
+        };
+        assert_eq!(fit_with(1), fit_with(3));
+    }
+
     #[test]
     fn check_points_are_finer_only_while_they_are_well_filled() {
         assert_eq!(check_factor(300_000, 19 * 19, 4), 2);

@@ -5,7 +5,9 @@
 //! headless Chromium pages on it (`tests/browser/open_pages.mjs`, rendering on
 //! this machine's cores), and with 1 and 3 WebSocket readers that take every
 //! frame as a browser does but draw nothing (browsers on another machine,
-//! the usual case: only the node's work stays on the robot), with each
+//! the usual case: only the node's work stays on the robot), and with
+//! `shroud record` writing the clouds and surrogates to a temporary MCAP file
+//! (MB/s written, its drops), with each
 //! consumer's CPU share, all in one run so that the ratios compare like with
 //! like on a noisy machine.
 
@@ -38,6 +40,8 @@ enum Consumer {
     Foxglove {
         clients: usize,
     },
+    /// `shroud record` of the clouds and surrogates to a temporary file.
+    Recorder,
 }
 
 impl Consumer {
@@ -53,6 +57,7 @@ impl Consumer {
             Self::Foxglove { clients } => {
                 format!("foxglove bridge, {clients} client(s) subscribed to everything")
             }
+            Self::Recorder => "shroud record, cloud/* and surrogate/* (MCAP, zstd)".into(),
         }
     }
 }
@@ -67,6 +72,8 @@ struct Row {
     dropped: u64,
     node_cpu: Option<f64>,
     browser_cpu: Option<f64>,
+    /// What the consumer itself reports (the recorder's MB/s and drops).
+    note: String,
 }
 
 /// What the bench hears from the graph.
@@ -75,6 +82,8 @@ struct Heard {
     latency_ms: Vec<f64>,
     fit_ms: Vec<f64>,
     dropped_backlog: u64,
+    /// The recorder's drops, all causes.
+    recorder_dropped: u64,
 }
 
 pub fn run(args: &BenchArgs) -> Result<()> {
@@ -152,6 +161,7 @@ async fn measure_all(args: &BenchArgs, browsers: &[usize], seconds: f64) -> Resu
         eprintln!("  {clients} Foxglove client(s) took {frames} frames");
     }
     graph.stop("foxglove");
+    rows.push(measure_recorder(&mut graph, &heard, seconds).await?);
     rows.push(measure(&heard, Consumer::Nothing, seconds, None).await?);
     graph.stop_all();
     Ok(rows)
@@ -178,7 +188,45 @@ async fn listen(
                 .dropped_backlog = s.counter("dropped_backlog");
         })
         .await?;
-    Ok(vec![surrogates, status])
+    let sink = heard.clone();
+    let recorder = graph
+        .on_status("record", move |s| {
+            let dropped: u64 = shroud_core::record::DropCause::ALL
+                .iter()
+                .map(|c| s.counter(c.counter()))
+                .sum();
+            sink.lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .recorder_dropped = dropped;
+        })
+        .await?;
+    Ok(vec![surrogates, status, recorder])
+}
+
+/// The recorder's row: `shroud record` to a temporary file while the graph
+/// runs; its MB/s from the file's growth over the row (settling included).
+async fn measure_recorder(
+    graph: &mut BenchGraph,
+    heard: &Arc<Mutex<Heard>>,
+    seconds: f64,
+) -> Result<Row> {
+    let file = std::env::temp_dir().join(format!("shroud-bench-{}.mcap", std::process::id()));
+    let path = file.to_string_lossy().into_owned();
+    let topics = "cloud/*,surrogate/*";
+    let args = ["-o", path.as_str(), "--topics", topics, "--overwrite"];
+    let pid = graph.spawn("record", "record", &args, None)?;
+    let started = std::time::Instant::now();
+    let mut row = measure(heard, Consumer::Recorder, seconds, Some((pid, None))).await?;
+    let bytes = std::fs::metadata(&file).map(|m| m.len()).unwrap_or(0);
+    let mb_per_s = bytes as f64 / 1e6 / started.elapsed().as_secs_f64();
+    let dropped = heard
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .recorder_dropped;
+    row.note = format!(": {mb_per_s:.1} MB/s written, {dropped} dropped");
+    graph.stop("record");
+    let _ = std::fs::remove_file(&file);
+    Ok(row)
 }
 
 /// Runs one configuration: settles, then measures for `seconds`.
@@ -228,6 +276,7 @@ async fn measure(
         dropped: h.dropped_backlog.saturating_sub(dropped_before),
         node_cpu,
         browser_cpu,
+        note: String::new(),
     })
 }
 
@@ -341,8 +390,9 @@ fn print_table(rows: &[Row], args: &BenchArgs, seconds: f64) {
     let pct = |x: Option<f64>| x.map(|v| format!("{v:.1} %")).unwrap_or_else(|| "-".into());
     for r in rows {
         println!(
-            "| {} | {} | {:.2} ms | {:.2} ms | {:.2} ms | {:.3} | {} | {} | {} |",
+            "| {}{} | {} | {:.2} ms | {:.2} ms | {:.2} ms | {:.3} | {} | {} | {} |",
             r.consumer.label(),
+            r.note,
             r.surrogates,
             r.fit_p50,
             r.latency_p50,

@@ -3,12 +3,14 @@
 mod blend;
 mod blend_cmd;
 mod demo;
+mod exit;
 pub mod fit;
 mod query;
 pub mod sensor_sim;
 mod sim;
 mod smooth;
 
+pub use exit::ExitWith;
 pub use fit::certificate_line;
 
 use anyhow::Result;
@@ -56,6 +58,13 @@ pub enum Command {
     Blend(blend::BlendArgs),
     /// Send drop/adjust/clear/commit commands (or a whole drag) to a `blend` node.
     BlendCmd(blend_cmd::BlendCmdArgs),
+    /// Record the namespace's messages into an MCAP file (until Ctrl-C or --duration).
+    Record(crate::recording::RecordArgs),
+    /// Publish the shroud messages of an MCAP recording with their original timing.
+    Replay(crate::recording::ReplayArgs),
+    /// MCAP files: `shroud mcap info FILE`.
+    #[command(subcommand)]
+    Mcap(crate::recording::McapCommand),
     /// The G1 smooth fitter's domain (paper 004): mesh classification and the
     /// dimension of its G1 space (`--info`).
     Smooth(smooth::SmoothArgs),
@@ -75,5 +84,8 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Blend(args) => blend::run(&args),
         Command::BlendCmd(args) => blend_cmd::run(args),
         Command::Smooth(args) => smooth::run(&args),
+        Command::Record(args) => crate::recording::record(args),
+        Command::Replay(args) => crate::recording::replay(args),
+        Command::Mcap(command) => crate::recording::run_mcap(&command),
     }
 }

@@ -63,6 +63,10 @@ pub enum NodeCommand {
     Dashboard(DashboardArgs),
     /// The Foxglove WebSocket bridge: the graph in Foxglove or Lichtblick, drops from their Publish panel.
     Foxglove(FoxgloveArgs),
+    /// Record the namespace's messages into an MCAP file (as `shroud record`).
+    Record(crate::recording::RecordArgs),
+    /// Publish an MCAP recording's shroud messages, in place of a sensor (as `shroud replay`).
+    Replay(crate::recording::ReplayArgs),
     /// List the nodes alive in a namespace with their status.
     List(NodeListArgs),
 }
@@ -80,6 +84,8 @@ pub fn run(command: NodeCommand) -> Result<()> {
         NodeCommand::Smooth(args) => smooth::run(args),
         NodeCommand::Dashboard(args) => dashboard::run(args),
         NodeCommand::Foxglove(args) => foxglove_bridge::run(args),
+        NodeCommand::Record(args) => crate::recording::record(args),
+        NodeCommand::Replay(args) => crate::recording::replay(args),
         NodeCommand::List(args) => list::run(args),
     }
 }

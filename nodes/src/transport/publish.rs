@@ -70,6 +70,21 @@ impl PayloadWriter {
         Ok(ZBytes::from(bytes))
     }
 
+    /// `bytes` (an encoded message, e.g. replayed from a recording) as a
+    /// payload: copied into a shared buffer when large and shared memory is
+    /// available, else into a vector.
+    pub fn copy(&self, bytes: &[u8]) -> ZBytes {
+        if bytes.len() >= SHM_THRESHOLD {
+            if let Some(mut buf) = self.alloc(bytes.len()) {
+                buf.copy_from_slice(bytes);
+                self.shm_sent.fetch_add(1, Ordering::Relaxed);
+                return ZBytes::from(buf);
+            }
+        }
+        self.copy_sent.fetch_add(1, Ordering::Relaxed);
+        ZBytes::from(bytes.to_vec())
+    }
+
     /// A shared buffer of `len` bytes, or `None` without shared memory, when the
     /// segment is full (receivers still holding old buffers: the caller then
     /// copies rather than block), or when `len` is not a multiple of 4.

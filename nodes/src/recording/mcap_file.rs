@@ -1,0 +1,186 @@
+//! One MCAP file being written: the `mcap` crate's writer over a buffered
+//! file, shroud's schemas and channels (core's [`layout`]) added on first use,
+//! a sequence per channel, and the bytes and messages written so far.
+
+use anyhow::{Context, Result};
+use shroud_core::message::{TopicKey, TopicKind};
+use shroud_core::record::layout::{self, MESSAGE_ENCODING, RECORDING_METADATA};
+use std::collections::{BTreeMap, HashMap};
+use std::fs::File;
+use std::io::{BufWriter, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+
+/// A message to store: its topic, the times of the MCAP message header, its
+/// payload as it travelled.
+pub struct StoredMessage<'a> {
+    pub key: &'a TopicKey,
+    pub topic: &'a str,
+    pub log_ns: u64,
+    pub publish_ns: u64,
+    pub payload: &'a [u8],
+}
+
+/// How the file is compressed and described.
+#[derive(Debug, Clone)]
+pub struct FileOptions {
+    pub compression: Option<mcap::Compression>,
+    /// The `shroud.recording` metadata record.
+    pub metadata: BTreeMap<String, String>,
+}
+
+pub struct McapFile {
+    path: PathBuf,
+    writer: mcap::Writer<Counting<BufWriter<File>>>,
+    schemas: HashMap<TopicKind, u16>,
+    channels: HashMap<String, (u16, u32)>,
+    messages: u64,
+    /// The sink's byte count (`mcap::Writer` does not lend its sink).
+    len: Arc<AtomicU64>,
+}
+
+impl McapFile {
+    pub fn create(path: &Path, options: &FileOptions) -> Result<Self> {
+        let file =
+            File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+        let (sink, len) = Counting::new(BufWriter::with_capacity(1 << 20, file));
+        // Chunks are closed by the recorder (`ChunkPolicy`), never by size
+        // inside the crate, so that free space is checked before each one.
+        let mut writer = mcap::WriteOptions::new()
+            .compression(options.compression)
+            .chunk_size(None)
+            .library(format!("shroud {}", env!("CARGO_PKG_VERSION")))
+            .create(sink)
+            .with_context(|| format!("cannot start {}", path.display()))?;
+        writer
+            .write_metadata(&mcap::records::Metadata {
+                name: RECORDING_METADATA.to_owned(),
+                metadata: options.metadata.clone(),
+            })
+            .with_context(|| format!("cannot write to {}", path.display()))?;
+        Ok(Self {
+            path: path.to_path_buf(),
+            writer,
+            schemas: HashMap::new(),
+            channels: HashMap::new(),
+            messages: 0,
+            len,
+        })
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Bytes handed to the file so far (buffered or written).
+    pub fn bytes(&self) -> u64 {
+        self.len.load(Ordering::Relaxed)
+    }
+
+    pub fn messages(&self) -> u64 {
+        self.messages
+    }
+
+    pub fn write(&mut self, message: &StoredMessage<'_>) -> Result<()> {
+        let (channel_id, sequence) = self.channel(message.key, message.topic)?;
+        self.writer
+            .write_to_known_channel(
+                &mcap::records::MessageHeader {
+                    channel_id,
+                    sequence,
+                    log_time: message.log_ns,
+                    publish_time: message.publish_ns,
+                },
+                message.payload,
+            )
+            .with_context(|| format!("cannot write to {}", self.path.display()))?;
+        self.messages += 1;
+        Ok(())
+    }
+
+    /// Closes the open chunk and flushes it to the file.
+    pub fn close_chunk(&mut self) -> Result<()> {
+        self.writer
+            .flush()
+            .with_context(|| format!("cannot write to {}", self.path.display()))
+    }
+
+    /// Writes the summary and footer: the file is complete.
+    pub fn finish(mut self) -> Result<u64> {
+        self.writer
+            .finish()
+            .with_context(|| format!("cannot finish {}", self.path.display()))?;
+        Ok(self.len.load(Ordering::Relaxed))
+    }
+
+    /// The channel of `topic` and its next sequence number.
+    fn channel(&mut self, key: &TopicKey, topic: &str) -> Result<(u16, u32)> {
+        if let Some((id, sequence)) = self.channels.get_mut(topic) {
+            *sequence = sequence.wrapping_add(1);
+            return Ok((*id, *sequence));
+        }
+        let schema_id = match self.schemas.get(&key.kind) {
+            Some(&id) => id,
+            None => {
+                let schema = layout::schema_for(key.kind);
+                let id = self
+                    .writer
+                    .add_schema(&schema.name, schema.encoding, &schema.data)
+                    .with_context(|| format!("cannot write to {}", self.path.display()))?;
+                self.schemas.insert(key.kind, id);
+                id
+            }
+        };
+        let id = self
+            .writer
+            .add_channel(
+                schema_id,
+                topic,
+                MESSAGE_ENCODING,
+                &layout::channel_metadata(key),
+            )
+            .with_context(|| format!("cannot write to {}", self.path.display()))?;
+        self.channels.insert(topic.to_owned(), (id, 0));
+        Ok((id, 0))
+    }
+}
+
+/// A sink that counts the bytes of the file (its furthest position).
+pub struct Counting<W> {
+    inner: W,
+    position: u64,
+    len: Arc<AtomicU64>,
+}
+
+impl<W> Counting<W> {
+    fn new(inner: W) -> (Self, Arc<AtomicU64>) {
+        let len = Arc::new(AtomicU64::new(0));
+        let sink = Self {
+            inner,
+            position: 0,
+            len: len.clone(),
+        };
+        (sink, len)
+    }
+}
+
+impl<W: Write> Write for Counting<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let n = self.inner.write(buf)?;
+        self.position += n as u64;
+        self.len.fetch_max(self.position, Ordering::Relaxed);
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+impl<W: Seek> Seek for Counting<W> {
+    fn seek(&mut self, pos: SeekFrom) -> std::io::Result<u64> {
+        self.position = self.inner.seek(pos)?;
+        Ok(self.position)
+    }
+}

@@ -1,0 +1,43 @@
+//! MCAP recordings: `shroud record` writes the namespace's messages into an
+//! MCAP file (exactly as they travelled), `shroud replay` publishes them
+//! again with their timing, `shroud mcap info` says what a file holds, even
+//! a truncated one. The decisions (topic filters, layout, chunks, splits,
+//! drops, replay timing) are core's (`shroud_core::record`); this is the I/O.
+
+mod disk;
+mod info;
+mod mcap_file;
+mod queue;
+mod reader;
+mod record;
+mod replay;
+mod shared;
+mod writer;
+
+pub use info::{InfoArgs, TRUNCATED_EXIT};
+pub use record::RecordArgs;
+pub use replay::ReplayArgs;
+
+use anyhow::Result;
+use clap::Subcommand;
+
+#[derive(Debug, Subcommand)]
+pub enum McapCommand {
+    /// Channels, schemas, counts, duration, size and compression of an MCAP
+    /// file; a truncated file is reported with what it still holds (exit 3).
+    Info(InfoArgs),
+}
+
+pub fn run_mcap(command: &McapCommand) -> Result<()> {
+    match command {
+        McapCommand::Info(args) => info::run(args),
+    }
+}
+
+pub fn record(args: RecordArgs) -> Result<()> {
+    record::run(args)
+}
+
+pub fn replay(args: ReplayArgs) -> Result<()> {
+    replay::run(args)
+}

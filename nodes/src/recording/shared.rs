@@ -1,0 +1,73 @@
+//! What the recorder's subscribers, its writer thread and its node body
+//! share: the counts (taken, written, dropped by topic and cause, also kept in
+//! the node's status counters) and whether the writer still takes messages.
+
+use crate::node::NodeMetrics;
+use shroud_core::record::{DropCause, DropCounts};
+use std::sync::{Arc, Mutex, MutexGuard};
+
+pub struct Recording {
+    metrics: Arc<NodeMetrics>,
+    drops: Mutex<DropCounts>,
+    /// Set once the writer stopped (disk full, write error), with why.
+    refused: Mutex<Option<(DropCause, String)>>,
+}
+
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    // Counts stay meaningful even if a thread panicked mid-update.
+    m.lock().unwrap_or_else(|p| p.into_inner())
+}
+
+impl Recording {
+    pub fn new(metrics: Arc<NodeMetrics>) -> Self {
+        for cause in DropCause::ALL {
+            metrics.set_counter(cause.counter(), 0);
+        }
+        Self {
+            metrics,
+            drops: Mutex::default(),
+            refused: Mutex::default(),
+        }
+    }
+
+    /// A message of a recorded topic arrived.
+    pub fn received(&self) {
+        self.metrics.add("received", 1);
+    }
+
+    pub fn written(&self, bytes: u64) {
+        self.metrics.add("written", 1);
+        self.metrics.add("bytes_written", bytes);
+    }
+
+    pub fn dropped(&self, topic: &str, cause: DropCause) {
+        lock(&self.drops).add(topic, cause);
+        self.metrics.add(cause.counter(), 1);
+    }
+
+    pub fn queue_bytes(&self, bytes: usize) {
+        self.metrics.set("queue_mb", bytes as f64 / 1e6);
+    }
+
+    /// Stops taking messages (the first cause is kept).
+    pub fn refuse(&self, cause: DropCause, reason: String) {
+        lock(&self.refused).get_or_insert((cause, reason));
+    }
+
+    /// Why messages are no longer taken, if they are not.
+    pub fn refusing(&self) -> Option<DropCause> {
+        lock(&self.refused).as_ref().map(|(c, _)| *c)
+    }
+
+    pub fn refusal(&self) -> Option<(DropCause, String)> {
+        lock(&self.refused).clone()
+    }
+
+    pub fn drops(&self) -> DropCounts {
+        lock(&self.drops).clone()
+    }
+
+    pub fn counter(&self, name: &str) -> u64 {
+        self.metrics.counter(name)
+    }
+}

@@ -1,0 +1,209 @@
+//! The recorder's writer thread: takes arrivals off the queue and writes them
+//! to the MCAP file, closing chunks by core's [`ChunkPolicy`], checking free
+//! space (statvfs) before each chunk against the [`DiskReserve`], starting a
+//! new file by the [`SplitPolicy`], and finishing the file whatever happens:
+//! on a full disk or a write error it stops taking messages (they are counted
+//! as drops) and ends the file cleanly.
+
+use super::disk::free_bytes;
+use super::mcap_file::{FileOptions, McapFile, StoredMessage};
+use super::queue::WriteQueue;
+use super::shared::Recording;
+use anyhow::Result;
+use shroud_core::message::TopicKey;
+use shroud_core::record::{split_path, ChunkPolicy, DiskReserve, DropCause, SplitPolicy};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use zenoh::bytes::ZBytes;
+
+/// A message as the subscriber received it.
+pub struct Arrival {
+    pub key: TopicKey,
+    pub topic: String,
+    pub payload: ZBytes,
+    pub log_ns: u64,
+    pub publish_ns: u64,
+}
+
+/// Where and how the recording is written.
+pub struct WriterPlan {
+    pub base: PathBuf,
+    pub split: SplitPolicy,
+    pub chunk: ChunkPolicy,
+    pub reserve: DiskReserve,
+    pub options: FileOptions,
+}
+
+/// A file of the recording once finished.
+#[derive(Debug, Clone)]
+pub struct WrittenFile {
+    pub path: PathBuf,
+    pub bytes: u64,
+    pub messages: u64,
+}
+
+/// How often the writer looks at the chunk's age while no message comes.
+const IDLE_POLL: Duration = Duration::from_millis(100);
+
+struct Writer {
+    plan: WriterPlan,
+    file: Option<McapFile>,
+    index: u32,
+    chunk_bytes: u64,
+    chunk_started: Instant,
+    written: Vec<WrittenFile>,
+    recording: Arc<Recording>,
+}
+
+/// Writes until the queue is closed and drained; returns the files written.
+/// `first` is the recording's first file, already created (so that a bad
+/// path fails before the node starts).
+pub fn run_writer(
+    plan: WriterPlan,
+    first: McapFile,
+    queue: Arc<WriteQueue<Arrival>>,
+    recording: Arc<Recording>,
+) -> Vec<WrittenFile> {
+    let mut writer = Writer {
+        plan,
+        file: Some(first),
+        index: 0,
+        chunk_bytes: 0,
+        chunk_started: Instant::now(),
+        written: Vec::new(),
+        recording,
+    };
+    loop {
+        match queue.pop(IDLE_POLL) {
+            Some(arrival) => writer.take(arrival),
+            None if queue.is_closed_and_empty() => break,
+            None => {}
+        }
+        writer.close_chunk_if_due();
+        writer.recording.queue_bytes(queue.bytes());
+    }
+    writer.finish_file();
+    writer.written
+}
+
+impl Writer {
+    fn take(&mut self, arrival: Arrival) {
+        if let Some(cause) = self.recording.refusing() {
+            self.recording.dropped(&arrival.topic, cause);
+            return;
+        }
+        let payload = arrival.payload.to_bytes();
+        if let Err(e) = self.write(&arrival, &payload) {
+            tracing::error!("recording stopped: {e:#}");
+            self.recording
+                .dropped(&arrival.topic, DropCause::WriteError);
+            self.recording
+                .refuse(DropCause::WriteError, format!("{e:#}"));
+            self.finish_file();
+        }
+    }
+
+    fn write(&mut self, arrival: &Arrival, payload: &[u8]) -> Result<()> {
+        let len = payload.len() as u64;
+        let (bytes, messages) = self
+            .file
+            .as_ref()
+            .map_or((0, 0), |f| (f.bytes(), f.messages()));
+        if self.plan.split.should_split(bytes, messages, len) {
+            self.finish_file();
+            self.index += 1;
+            let path = split_path(&self.plan.base, true, self.index);
+            self.file = Some(McapFile::create(&path, &self.plan.options)?);
+            tracing::info!(path = %path.display(), "next file");
+        }
+        if self.chunk_bytes == 0 && !self.disk_admits_chunk() {
+            self.recording.dropped(&arrival.topic, DropCause::DiskFull);
+            return Ok(());
+        }
+        let Some(file) = self.file.as_mut() else {
+            self.recording
+                .dropped(&arrival.topic, DropCause::WriteError);
+            return Ok(());
+        };
+        file.write(&StoredMessage {
+            key: &arrival.key,
+            topic: &arrival.topic,
+            log_ns: arrival.log_ns,
+            publish_ns: arrival.publish_ns,
+            payload,
+        })?;
+        if self.chunk_bytes == 0 {
+            self.chunk_started = Instant::now();
+        }
+        self.chunk_bytes += len;
+        self.recording.written(len);
+        Ok(())
+    }
+
+    /// Before a chunk starts: is there room for it and the reserve? If not,
+    /// the recording stops and the file is finished.
+    fn disk_admits_chunk(&mut self) -> bool {
+        let dir = self
+            .plan
+            .base
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(std::path::Path::new("."));
+        let Some(free) = free_bytes(dir) else {
+            return true;
+        };
+        if self.plan.reserve.admits(free, self.plan.chunk.chunk_bytes) {
+            return true;
+        }
+        let reason = format!(
+            "{:.0} MB free on the disk of {}, less than the reserve ({:.0} MB) and a chunk",
+            free as f64 / 1e6,
+            dir.display(),
+            self.plan.reserve.reserve_bytes as f64 / 1e6
+        );
+        tracing::error!("recording stopped: {reason}");
+        self.recording.refuse(DropCause::DiskFull, reason);
+        self.finish_file();
+        false
+    }
+
+    fn close_chunk_if_due(&mut self) {
+        let age = self.chunk_started.elapsed().as_nanos() as u64;
+        if !self.plan.chunk.should_close(self.chunk_bytes, age) {
+            return;
+        }
+        self.chunk_bytes = 0;
+        if let Some(file) = self.file.as_mut() {
+            if let Err(e) = file.close_chunk() {
+                tracing::error!("recording stopped: {e:#}");
+                self.recording
+                    .refuse(DropCause::WriteError, format!("{e:#}"));
+                self.finish_file();
+            }
+        }
+    }
+
+    /// Finishes the open file (summary, footer); a file that cannot be
+    /// finished is reported, and left as a truncated file that
+    /// `shroud mcap info` can still read.
+    fn finish_file(&mut self) {
+        self.chunk_bytes = 0;
+        let Some(file) = self.file.take() else {
+            return;
+        };
+        let (path, messages) = (file.path().to_path_buf(), file.messages());
+        match file.finish() {
+            Ok(bytes) => self.written.push(WrittenFile {
+                path,
+                bytes,
+                messages,
+            }),
+            Err(e) => {
+                tracing::error!("{e:#}");
+                self.recording
+                    .refuse(DropCause::WriteError, format!("{e:#}"));
+            }
+        }
+    }
+}

@@ -1,0 +1,340 @@
+//! Record and replay (MCAP), end to end with real processes over real zenoh:
+//! a replayed recording makes a fresh fit node publish the very surrogates
+//! that were recorded; a recorder killed with SIGKILL leaves a file that
+//! `shroud mcap info` reads as truncated, with what its complete chunks hold;
+//! a full disk ends the recording with a finished file; Python's `mcap`
+//! package reads a recording.
+
+mod common;
+
+use common::status_board::StatusBoard;
+use common::{hub_on_free_port, inbox, wiring, Proc};
+use shroud_core::message::{CloudMessage, SurrogateMessage};
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+const LONG: Duration = Duration::from_secs(60);
+
+fn shroud(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_shroud"))
+        .args(args)
+        .output()
+        .expect("the shroud binary runs")
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().expect("utf-8 temp path")
+}
+
+/// The payloads of a finished MCAP file by topic, in file order.
+fn recorded(path: &Path) -> BTreeMap<String, Vec<Vec<u8>>> {
+    let bytes = std::fs::read(path).unwrap();
+    let mut by_topic: BTreeMap<String, Vec<Vec<u8>>> = BTreeMap::new();
+    for message in mcap::MessageStream::new(&bytes).expect("an MCAP file") {
+        let message = message.expect("a readable message");
+        by_topic
+            .entry(message.channel.topic.clone())
+            .or_default()
+            .push(message.data.into_owned());
+    }
+    by_topic
+}
+
+/// A surrogate's bytes with the times the fit node measures, `fit_ns` and
+/// `pipeline_ns`, set to zero; checked first to re-encode to exactly the bytes
+/// received (so that equal results mean byte-identical messages but for those
+/// two fields).
+fn without_measured_times(bytes: &[u8]) -> Vec<u8> {
+    let (mut surrogate, _) = SurrogateMessage::from_bytes(bytes).expect("a surrogate");
+    assert_eq!(surrogate.to_bytes().unwrap(), bytes, "re-encodes exactly");
+    surrogate.fit_ns = 0;
+    surrogate.pipeline_ns = 0;
+    surrogate.to_bytes().unwrap()
+}
+
+fn start(args: &[&str], wiring: &[&str]) -> Proc {
+    Proc::start(&[args, wiring].concat())
+}
+
+/// Records `frames` frames of a scanner through a fit node, recorder first
+/// (so that the recorded fit node starts cold, as a fresh one will).
+fn record_demo(
+    (session, endpoint): (&zenoh::Session, &str),
+    ns: &str,
+    file: &Path,
+    frames: u64,
+) -> String {
+    let board = StatusBoard::new(session, ns);
+    let w = wiring(endpoint, ns);
+    let mut recorder = start(
+        &[
+            "record",
+            "-o",
+            s(file),
+            "--topics",
+            "cloud/*,surrogate/*,status/*",
+        ],
+        &w,
+    );
+    board.wait_for("record", "its own status recorded", LONG, |st| {
+        st.counter("received") > 0
+    });
+    let _fit = start(&["node", "fit", "--input", "s", "--grid", "12x12"], &w);
+    board.wait_for("fit", "a status", LONG, |_| true);
+    let frames_arg = frames.to_string();
+    let mut scanner = start(
+        &[
+            "node",
+            "scanner",
+            "--points",
+            "3000",
+            "--rate",
+            "5",
+            "--stream",
+            "s",
+            "--frames",
+            &frames_arg,
+        ],
+        &w,
+    );
+    assert!(scanner.wait_exit(LONG).success(), "{}", scanner.output());
+    // Every cloud the fit node took is fitted before the recording stops.
+    let ended = common::unix_ns();
+    let deadline = Instant::now() + LONG;
+    loop {
+        let st = board.published_after("fit", ended);
+        if st.counter("received") >= frames && st.counter("published") == st.counter("received") {
+            break;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "the fit node did not finish: {st:?}"
+        );
+    }
+    recorder.signal(libc::SIGINT);
+    assert!(recorder.wait_exit(LONG).success(), "{}", recorder.output());
+    recorder.output()
+}
+
+#[test]
+fn replayed_clouds_give_byte_identical_surrogates() {
+    let (endpoint, session) = hub_on_free_port();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("demo.mcap");
+    let summary = record_demo((&session, &endpoint), "rr-record", &file, 8);
+    assert!(summary.contains("recorded"), "{summary}");
+    let by_topic = recorded(&file);
+    let clouds = &by_topic["shroud/rr-record/cloud/s"];
+    let surrogates = &by_topic["shroud/rr-record/surrogate/s"];
+    // The recorded fit node fitted exactly the recorded clouds, in order: the
+    // fresh one will start from the same (cold) state and see the same ones.
+    let cloud_sequences: Vec<u64> = clouds
+        .iter()
+        .map(|c| CloudMessage::from_bytes(c).unwrap().sequence)
+        .collect();
+    let fitted: Vec<u64> = surrogates
+        .iter()
+        .map(|b| SurrogateMessage::from_bytes(b).unwrap().0.source_sequence)
+        .collect();
+    assert_eq!(fitted, cloud_sequences);
+    assert!(clouds.len() >= 8, "{} clouds", clouds.len());
+
+    let info = shroud(&["mcap", "info", s(&file)]);
+    let text = String::from_utf8_lossy(&info.stdout);
+    assert!(info.status.success(), "{text}");
+    assert!(text.contains("state:       complete"), "{text}");
+    let cloud_line = format!("shroud/rr-record/cloud/s  {} msgs", clouds.len());
+    assert!(text.contains(&cloud_line), "{cloud_line} in {text}");
+
+    let ns = "rr-replay";
+    let w = wiring(&endpoint, ns);
+    let replayed = inbox(&session, format!("shroud/{ns}/surrogate/s"));
+    let _fit = start(
+        &[
+            "node", "fit", "--input", "s", "--grid", "12x12", "--queue", "64",
+        ],
+        &w,
+    );
+    let mut replay = start(
+        &[
+            "replay",
+            s(&file),
+            "--topics",
+            "cloud/*",
+            "--speed",
+            "4",
+            "--wait-subscribers",
+            "30",
+        ],
+        &w,
+    );
+    assert!(replay.wait_exit(LONG).success(), "{}", replay.output());
+    let deadline = Instant::now() + LONG;
+    let mut fresh = Vec::new();
+    while fresh.len() < surrogates.len() && Instant::now() < deadline {
+        if let Ok(Some(sample)) = replayed.recv_timeout(Duration::from_millis(200)) {
+            fresh.push(sample.payload().to_bytes().into_owned());
+        }
+    }
+    assert_eq!(fresh.len(), surrogates.len(), "every replayed cloud fitted");
+    for (i, (old, new)) in surrogates.iter().zip(&fresh).enumerate() {
+        assert!(
+            without_measured_times(old) == without_measured_times(new),
+            "surrogate {i} differs"
+        );
+    }
+}
+
+#[test]
+fn a_recorder_killed_mid_recording_leaves_a_file_info_reads_as_truncated() {
+    let (endpoint, session) = hub_on_free_port();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("killed.mcap");
+    let ns = "rr-kill";
+    let board = StatusBoard::new(&session, ns);
+    let w = wiring(&endpoint, ns);
+    let mut recorder = start(&["record", "-o", s(&file), "--topics", "cloud/*"], &w);
+    board.wait_for("record", "a status", LONG, |_| true);
+    let _scanner = start(
+        &[
+            "node", "scanner", "--points", "20000", "--rate", "10", "--stream", "k",
+        ],
+        &w,
+    );
+    // Chunks close every second: after 15 clouds, some are complete.
+    let written = board
+        .wait_for("record", "15 clouds written", LONG, |st| {
+            st.counter("written") >= 15
+        })
+        .counter("written");
+    recorder.signal(libc::SIGKILL);
+    recorder.wait_exit(LONG);
+
+    let recovered = |out: &Output| -> u64 {
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert_eq!(out.status.code(), Some(3), "{text}");
+        assert!(
+            String::from_utf8_lossy(&out.stderr).contains("truncated"),
+            "{out:?}"
+        );
+        assert!(text.contains("shroud/rr-kill/cloud/k"), "{text}");
+        text.split("recovered ")
+            .nth(1)
+            .and_then(|r| r.split(' ').next())
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("no recovered count in {text}"))
+    };
+    let first = recovered(&shroud(&["mcap", "info", s(&file)]));
+    assert!(first > 0, "messages of complete chunks are readable");
+    // The kill is not after the messages the status counted last: at least
+    // those were written, at most those plus a second's.
+    assert!(first <= written + 15, "{first} of {written}");
+    // Cut inside a chunk too: fewer messages, still no crash.
+    let len = std::fs::metadata(&file).unwrap().len();
+    let f = std::fs::OpenOptions::new().write(true).open(&file).unwrap();
+    f.set_len(len * 2 / 3).unwrap();
+    let cut = recovered(&shroud(&["mcap", "info", s(&file)]));
+    assert!(cut < first, "{cut} of {first}");
+}
+
+#[test]
+fn a_full_disk_stops_the_recording_and_finishes_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("full.mcap");
+    // A reserve no disk has: the first message (the recorder's own status)
+    // finds the disk full.
+    let mut recorder = Proc::start(&[
+        "record",
+        "-o",
+        s(&file),
+        "--topics",
+        "status/*",
+        "--min-free",
+        "1000000000",
+        "--multicast",
+        "off",
+        "--namespace",
+        "rr-full",
+    ]);
+    let status = recorder.wait_exit(LONG);
+    let output = recorder.output();
+    assert!(!status.success(), "{output}");
+    assert!(
+        output.contains("recording stopped early (disk full)"),
+        "{output}"
+    );
+    assert!(output.contains("disk full 1"), "{output}");
+    let info = shroud(&["mcap", "info", s(&file)]);
+    let text = String::from_utf8_lossy(&info.stdout);
+    assert!(info.status.success(), "{text}");
+    assert!(text.contains("messages:    0"), "{text}");
+}
+
+const PYTHON_MCAP: [&str; 1] = ["mcap==1.6.0"];
+
+/// Python's `mcap` reads a recording: its channels, schemas and counts are
+/// the ones shroud wrote.
+#[test]
+fn python_mcap_reads_a_recording() {
+    let (endpoint, session) = hub_on_free_port();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("py.mcap");
+    let ns = "rr-python";
+    let board = StatusBoard::new(&session, ns);
+    let w = wiring(&endpoint, ns);
+    let mut recorder = start(&["record", "-o", s(&file), "--topics", "cloud/*"], &w);
+    board.wait_for("record", "a status", LONG, |_| true);
+    let mut scanner = start(
+        &[
+            "node", "scanner", "--points", "2000", "--rate", "10", "--stream", "p", "--frames", "5",
+        ],
+        &w,
+    );
+    assert!(scanner.wait_exit(LONG).success());
+    board.wait_for("record", "5 clouds", LONG, |st| st.counter("written") >= 5);
+    recorder.signal(libc::SIGTERM);
+    assert!(recorder.wait_exit(LONG).success(), "{}", recorder.output());
+    let expected = recorded(&file)["shroud/rr-python/cloud/p"].len();
+
+    let py = common::python::python_with("mcap-env", &PYTHON_MCAP);
+    let script = r#"
+import json, sys
+from mcap.reader import make_reader
+with open(sys.argv[1], "rb") as f:
+    reader = make_reader(f)
+    summary = reader.get_summary()
+    channels = {}
+    for cid, ch in summary.channels.items():
+        schema = summary.schemas[ch.schema_id]
+        channels[ch.topic] = {
+            "message_encoding": ch.message_encoding,
+            "schema": schema.name,
+            "schema_encoding": schema.encoding,
+            "schema_data": json.loads(schema.data),
+            "count": summary.statistics.channel_message_counts.get(cid, 0),
+        }
+    read = sum(1 for _ in reader.iter_messages())
+    compression = sorted({c.compression for c in summary.chunk_indexes})
+    print(json.dumps({"channels": channels, "read": read, "compression": compression}))
+"#;
+    let out = Command::new(&py)
+        .args(["-c", script, s(&file)])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let cloud = &v["channels"]["shroud/rr-python/cloud/p"];
+    assert_eq!(cloud["message_encoding"], "msgpack");
+    assert_eq!(cloud["schema"], "shroud.CloudMessage");
+    assert_eq!(cloud["schema_encoding"], "shroud-msgpack");
+    assert_eq!(cloud["schema_data"]["schema_version"], 2);
+    assert_eq!(cloud["count"], expected as u64);
+    assert_eq!(v["read"], expected as u64);
+    assert_eq!(v["compression"], serde_json::json!(["zstd"]));
+}
