@@ -789,8 +789,15 @@ fn bad_recordings_and_recording_options_are_named_errors() {
     fails_with(record(&["--topics", "alive/*"]), "liveliness");
     fails_with(record(&["--split-size", "0"]), "--split-size");
     fails_with(record(&["--split-size", "1e12"]), "--split-size");
-    fails_with(record(&["--duration", "-1"]), "--duration");
+    fails_with(record(&["--duration=-1"]), "--duration");
     fails_with(record(&["--queue-size", "0"]), "--queue-size");
+    fails_with(record(&["--points-budget", "5"]), "--points-budget");
+    fails_with(record(&["--verdict-timeout", "0"]), "--verdict-timeout");
+    fails_with(record(&["--foxglove", "maybe"]), "--foxglove");
+    fails_with(
+        record(&["--arm-file", "/no/such/arm.toml"]),
+        "/no/such/arm.toml",
+    );
     let taken = write_file(dir.path(), "taken.mcap", b"x");
     fails_with(
         shroud(&["record", "-o", s(&taken)]),

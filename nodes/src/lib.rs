@@ -11,6 +11,6 @@ pub mod introspect;
 pub mod launch;
 pub mod node;
 pub mod parse;
-pub mod to_foxglove;
 pub mod recording;
+pub mod to_foxglove;
 pub mod transport;

@@ -14,8 +14,11 @@ pub fn python_with(name: &str, packages: &[&str]) -> PathBuf {
     let _one_at_a_time = CREATING.lock().unwrap_or_else(|e| e.into_inner());
     let venv = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let py = venv.join("bin/python3");
+    // The marker holds the package list: a changed pin makes a new venv.
     let ready = venv.join(".ready");
-    if !ready.exists() {
+    let wanted = packages.join("\n");
+    if std::fs::read_to_string(&ready).ok().as_deref() != Some(wanted.as_str()) {
+        let _ = std::fs::remove_dir_all(&venv);
         let status = Command::new("python3")
             .args(["-m", "venv"])
             .arg(&venv)
@@ -38,7 +41,7 @@ pub fn python_with(name: &str, packages: &[&str]) -> PathBuf {
             "pip install {packages:?} failed (needs the PyPI registry): {}",
             String::from_utf8_lossy(&out.stderr)
         );
-        std::fs::write(&ready, "").unwrap();
+        std::fs::write(&ready, &wanted).unwrap();
     }
     py
 }

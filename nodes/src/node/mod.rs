@@ -22,6 +22,7 @@ mod smooth;
 mod viewer;
 
 pub use arm::ArmArgs;
+pub(crate) use arm_file::read_arm_file;
 pub use blend::BlendNodeArgs;
 pub use can::CanNodeArgs;
 pub use dashboard::DashboardArgs;

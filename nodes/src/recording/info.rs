@@ -62,16 +62,14 @@ impl Contents {
                 self.schemas
                     .insert(header.id, (header.name, header.encoding));
             }
+            // The summary repeats the channels: the first record counts.
             Record::Channel(c) => {
-                self.channels.insert(
-                    c.id,
-                    Channel {
-                        topic: c.topic,
-                        message_encoding: c.message_encoding,
-                        schema_id: c.schema_id,
-                        messages: 0,
-                    },
-                );
+                self.channels.entry(c.id).or_insert(Channel {
+                    topic: c.topic,
+                    message_encoding: c.message_encoding,
+                    schema_id: c.schema_id,
+                    messages: 0,
+                });
             }
             Record::Message { header, .. } => {
                 self.messages += 1;
@@ -98,7 +96,7 @@ impl Contents {
 
 pub fn run(args: &InfoArgs) -> Result<()> {
     let size = std::fs::metadata(&args.file)
-        .with_context(|| format!("cannot read {}", args.file.display()))?
+        .with_context(|| format!("cannot open {}", args.file.display()))?
         .len();
     let mut contents = Contents::default();
     let ending = read_records(&args.file, |record| {

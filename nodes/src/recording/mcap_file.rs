@@ -1,7 +1,9 @@
 //! One MCAP file being written: the `mcap` crate's writer over a buffered
-//! file, shroud's schemas and channels (core's [`layout`]) added on first use,
+//! file, shroud's schemas and channels (core's [`layout`]) and those of the
+//! Foxglove views added on first use,
 //! a sequence per channel, and the bytes and messages written so far.
 
+use super::views::View;
 use anyhow::{Context, Result};
 use shroud_core::message::{TopicKey, TopicKind};
 use shroud_core::record::layout::{self, MESSAGE_ENCODING, RECORDING_METADATA};
@@ -34,6 +36,8 @@ pub struct McapFile {
     path: PathBuf,
     writer: mcap::Writer<Counting<BufWriter<File>>>,
     schemas: HashMap<TopicKind, u16>,
+    /// The Foxglove schemas of `--foxglove` views, by name.
+    view_schemas: HashMap<String, u16>,
     channels: HashMap<String, (u16, u32)>,
     messages: u64,
     /// The sink's byte count (`mcap::Writer` does not lend its sink).
@@ -47,9 +51,15 @@ impl McapFile {
         let (sink, len) = Counting::new(BufWriter::with_capacity(1 << 20, file));
         // Chunks are closed by the recorder (`ChunkPolicy`), never by size
         // inside the crate, so that free space is checked before each one.
+        // Each chunk is built in memory and written whole: when seeking, the
+        // crate streams a chunk behind a placeholder header that it patches
+        // at the chunk's end, and a recorder killed mid-chunk would leave a
+        // header whose lengths lie (the reader then fails on it) instead of
+        // a file that merely stops early.
         let mut writer = mcap::WriteOptions::new()
             .compression(options.compression)
             .chunk_size(None)
+            .disable_seeking(true)
             .library(format!("shroud {}", env!("CARGO_PKG_VERSION")))
             .create(sink)
             .with_context(|| format!("cannot start {}", path.display()))?;
@@ -63,6 +73,7 @@ impl McapFile {
             path: path.to_path_buf(),
             writer,
             schemas: HashMap::new(),
+            view_schemas: HashMap::new(),
             channels: HashMap::new(),
             messages: 0,
             len,
@@ -114,32 +125,85 @@ impl McapFile {
         Ok(self.len.load(Ordering::Relaxed))
     }
 
-    /// The channel of `topic` and its next sequence number.
+    /// The channel of shroud's `topic` and its next sequence number.
     fn channel(&mut self, key: &TopicKey, topic: &str) -> Result<(u16, u32)> {
-        if let Some((id, sequence)) = self.channels.get_mut(topic) {
-            *sequence = sequence.wrapping_add(1);
-            return Ok((*id, *sequence));
+        if let Some(next) = self.next_in(topic) {
+            return Ok(next);
         }
         let schema_id = match self.schemas.get(&key.kind) {
             Some(&id) => id,
             None => {
                 let schema = layout::schema_for(key.kind);
-                let id = self
-                    .writer
-                    .add_schema(&schema.name, schema.encoding, &schema.data)
-                    .with_context(|| format!("cannot write to {}", self.path.display()))?;
+                let id = self.add_schema(&schema.name, schema.encoding, &schema.data)?;
                 self.schemas.insert(key.kind, id);
                 id
             }
         };
+        self.add_channel(
+            schema_id,
+            topic,
+            MESSAGE_ENCODING,
+            &layout::channel_metadata(key),
+        )
+    }
+
+    /// Writes a Foxglove view of a recorded message (`--foxglove`), on its
+    /// own channel with the schema the `foxglove` crate declares.
+    pub fn write_view(&mut self, view: &View, log_ns: u64, publish_ns: u64) -> Result<()> {
+        let (channel_id, sequence) = match self.next_in(&view.topic) {
+            Some(next) => next,
+            None => {
+                let schema_id = match self.view_schemas.get(&view.schema.name) {
+                    Some(&id) => id,
+                    None => {
+                        let s = &view.schema;
+                        let id = self.add_schema(&s.name, &s.encoding, &s.data)?;
+                        self.view_schemas.insert(s.name.clone(), id);
+                        id
+                    }
+                };
+                let encoding = view.message_encoding.clone();
+                self.add_channel(schema_id, &view.topic, &encoding, &BTreeMap::new())?
+            }
+        };
+        self.writer
+            .write_to_known_channel(
+                &mcap::records::MessageHeader {
+                    channel_id,
+                    sequence,
+                    log_time: log_ns,
+                    publish_time: publish_ns,
+                },
+                &view.data,
+            )
+            .with_context(|| format!("cannot write to {}", self.path.display()))?;
+        self.messages += 1;
+        Ok(())
+    }
+
+    /// The next sequence number of a known channel.
+    fn next_in(&mut self, topic: &str) -> Option<(u16, u32)> {
+        let (id, sequence) = self.channels.get_mut(topic)?;
+        *sequence = sequence.wrapping_add(1);
+        Some((*id, *sequence))
+    }
+
+    fn add_schema(&mut self, name: &str, encoding: &str, data: &[u8]) -> Result<u16> {
+        self.writer
+            .add_schema(name, encoding, data)
+            .with_context(|| format!("cannot write to {}", self.path.display()))
+    }
+
+    fn add_channel(
+        &mut self,
+        schema_id: u16,
+        topic: &str,
+        encoding: &str,
+        metadata: &BTreeMap<String, String>,
+    ) -> Result<(u16, u32)> {
         let id = self
             .writer
-            .add_channel(
-                schema_id,
-                topic,
-                MESSAGE_ENCODING,
-                &layout::channel_metadata(key),
-            )
+            .add_channel(schema_id, topic, encoding, metadata)
             .with_context(|| format!("cannot write to {}", self.path.display()))?;
         self.channels.insert(topic.to_owned(), (id, 0));
         Ok((id, 0))

@@ -12,6 +12,7 @@ mod reader;
 mod record;
 mod replay;
 mod shared;
+mod views;
 mod writer;
 
 pub use info::{InfoArgs, TRUNCATED_EXIT};

@@ -7,8 +7,9 @@
 use super::mcap_file::{FileOptions, McapFile};
 use super::queue::WriteQueue;
 use super::shared::Recording;
+use super::views::FoxgloveViews;
 use super::writer::{run_writer, Arrival, WriterPlan, WrittenFile};
-use crate::node::{run_node, NodeCommon, NodeContext};
+use crate::node::{read_arm_file, run_node, NodeCommon, NodeContext};
 use crate::transport::unix_ns;
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
@@ -53,6 +54,23 @@ pub struct RecordArgs {
     /// its file is finished (a full disk).
     #[arg(long, value_name = "MB", default_value_t = 256.0)]
     pub min_free: f64,
+    /// Also store the data as Foxglove's well-known schemas (point clouds,
+    /// scene updates, frame transforms, JSON), so that Foxglove or Lichtblick
+    /// shows the scene; `--foxglove false` records the raw messages only.
+    #[arg(long, value_name = "BOOL", default_value_t = true, action = clap::ArgAction::Set)]
+    pub foxglove: bool,
+    /// Most points of each cloud in its Foxglove view (thinned by an even
+    /// stride; the raw cloud is recorded whole).
+    #[arg(long, default_value_t = 50_000)]
+    pub points_budget: usize,
+    /// An arm file (as the guard's) whose arm is drawn at its recorded joint
+    /// states in the Foxglove views. Repeatable.
+    #[arg(long = "arm-file", value_name = "FILE")]
+    pub arm_files: Vec<PathBuf>,
+    /// Seconds without a verdict after which the Foxglove views show
+    /// `no-verdict`.
+    #[arg(long, default_value_t = 0.5)]
+    pub verdict_timeout: f64,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -124,6 +142,7 @@ fn plan(args: &RecordArgs) -> Result<Plan> {
         CompressionArg::None => None,
     };
     let namespace = &args.common.zenoh.namespace;
+    let views = args.foxglove.then(|| views(args)).transpose()?;
     Ok(Plan {
         filter,
         duration,
@@ -139,8 +158,35 @@ fn plan(args: &RecordArgs) -> Result<Plan> {
                 compression,
                 metadata: recording_metadata(namespace, &args.topics, env!("CARGO_PKG_VERSION")),
             },
+            views,
         },
     })
+}
+
+/// The `--foxglove` views' settings, checked.
+fn views(args: &RecordArgs) -> Result<FoxgloveViews> {
+    anyhow::ensure!(
+        (1000..=2_000_000).contains(&args.points_budget),
+        "--points-budget must be 1000 to 2000000 points, not {}",
+        args.points_budget
+    );
+    anyhow::ensure!(
+        args.verdict_timeout.is_finite()
+            && args.verdict_timeout > 0.0
+            && args.verdict_timeout <= 3600.0,
+        "--verdict-timeout must be more than 0 and at most 3600 seconds, not {}",
+        args.verdict_timeout
+    );
+    let arms = args
+        .arm_files
+        .iter()
+        .map(|path| read_arm_file(path).map(|file| file.arm))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(FoxgloveViews::new(
+        args.points_budget,
+        arms,
+        (args.verdict_timeout * 1e9) as u64,
+    ))
 }
 
 fn record(ctx: Arc<NodeContext>, plan: Plan, first: McapFile) -> Result<()> {

@@ -141,6 +141,9 @@ fn sleep_until(ctx: &NodeContext, due: Instant) -> bool {
     }
 }
 
+/// Publishes one replayed message (key, log time, payload); false to stop.
+type PublishFn<'a> = dyn FnMut(&TopicKey, u64, &[u8]) -> Result<bool> + 'a;
+
 /// The channels and schemas of one pass over the file.
 #[derive(Default)]
 struct Pass {
@@ -156,7 +159,7 @@ impl Pass {
         &mut self,
         record: Record<'_>,
         filter: &TopicFilter,
-        publish: &mut dyn FnMut(&TopicKey, u64, &[u8]) -> Result<bool>,
+        publish: &mut PublishFn<'_>,
     ) -> Result<bool> {
         match record {
             Record::Schema { header, data } => {

@@ -23,6 +23,8 @@ impl Recording {
         for cause in DropCause::ALL {
             metrics.set_counter(cause.counter(), 0);
         }
+        metrics.set_counter("views_written", 0);
+        metrics.set_counter("views_failed", 0);
         Self {
             metrics,
             drops: Mutex::default(),
@@ -38,6 +40,18 @@ impl Recording {
     pub fn written(&self, bytes: u64) {
         self.metrics.add("written", 1);
         self.metrics.add("bytes_written", bytes);
+    }
+
+    /// Foxglove views written (`--foxglove`).
+    pub fn views_written(&self, n: u64) {
+        self.metrics.add("views_written", n);
+    }
+
+    /// A recorded message whose Foxglove view could not be made (the raw
+    /// message is recorded all the same).
+    pub fn view_failed(&self, reason: &str) {
+        self.metrics.add("views_failed", 1);
+        tracing::warn!("no Foxglove view: {reason}");
     }
 
     pub fn dropped(&self, topic: &str, cause: DropCause) {

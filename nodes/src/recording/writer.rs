@@ -9,6 +9,8 @@ use super::disk::free_bytes;
 use super::mcap_file::{FileOptions, McapFile, StoredMessage};
 use super::queue::WriteQueue;
 use super::shared::Recording;
+use super::views::FoxgloveViews;
+use crate::transport::unix_ns;
 use anyhow::Result;
 use shroud_core::message::TopicKey;
 use shroud_core::record::{split_path, ChunkPolicy, DiskReserve, DropCause, SplitPolicy};
@@ -33,6 +35,8 @@ pub struct WriterPlan {
     pub chunk: ChunkPolicy,
     pub reserve: DiskReserve,
     pub options: FileOptions,
+    /// The Foxglove views written beside the raw messages (`--foxglove`).
+    pub views: Option<FoxgloveViews>,
 }
 
 /// A file of the recording once finished.
@@ -78,7 +82,7 @@ pub fn run_writer(
         match queue.pop(IDLE_POLL) {
             Some(arrival) => writer.take(arrival),
             None if queue.is_closed_and_empty() => break,
-            None => {}
+            None => writer.write_periodic_views(unix_ns()),
         }
         writer.close_chunk_if_due();
         writer.recording.queue_bytes(queue.bytes());
@@ -136,9 +140,60 @@ impl Writer {
         if self.chunk_bytes == 0 {
             self.chunk_started = Instant::now();
         }
-        self.chunk_bytes += len;
         self.recording.written(len);
+        let views = self.write_views(arrival, payload)?;
+        self.chunk_bytes += len + views;
         Ok(())
+    }
+
+    /// Writes the Foxglove views of a message just written (and the
+    /// verdicts due); returns their bytes. A message that does not convert
+    /// is counted and logged (`views_failed`); its raw record stays.
+    fn write_views(&mut self, arrival: &Arrival, payload: &[u8]) -> Result<u64> {
+        let (Some(views), Some(file)) = (self.plan.views.as_mut(), self.file.as_mut()) else {
+            return Ok(0);
+        };
+        let log_ns = arrival.log_ns;
+        let made = views.periodic(log_ns).and_then(|mut made| {
+            made.extend(views.of_message(&arrival.key, payload, log_ns)?);
+            Ok(made)
+        });
+        let made = match made {
+            Ok(made) => made,
+            Err(e) => {
+                self.recording.view_failed(&e);
+                return Ok(0);
+            }
+        };
+        let mut bytes = 0;
+        for view in &made {
+            file.write_view(view, log_ns, arrival.publish_ns)?;
+            bytes += view.data.len() as u64;
+        }
+        self.recording.views_written(made.len() as u64);
+        Ok(bytes)
+    }
+
+    /// While no message comes, the verdicts still go out every 100 ms (a
+    /// silent guard shows as `no-verdict` in the recording).
+    fn write_periodic_views(&mut self, now_ns: u64) {
+        let (Some(views), Some(file)) = (self.plan.views.as_mut(), self.file.as_mut()) else {
+            return;
+        };
+        let made = match views.periodic(now_ns) {
+            Ok(made) => made,
+            Err(e) => return self.recording.view_failed(&e),
+        };
+        for view in &made {
+            if let Err(e) = file.write_view(view, now_ns, now_ns) {
+                tracing::error!("recording stopped: {e:#}");
+                self.recording
+                    .refuse(DropCause::WriteError, format!("{e:#}"));
+                self.finish_file();
+                return;
+            }
+        }
+        self.recording.views_written(made.len() as u64);
     }
 
     /// Before a chunk starts: is there room for it and the reserve? If not,

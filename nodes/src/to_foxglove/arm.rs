@@ -148,7 +148,7 @@ axis = [0.0, 0.0, 1.0]
     }
 
     fn rgba(c: &Option<foxglove::messages::Color>) -> [f64; 4] {
-        let c = c.clone().unwrap();
+        let c = (*c).unwrap();
         [c.r, c.g, c.b, c.a]
     }
 
@@ -167,11 +167,11 @@ axis = [0.0, 0.0, 1.0]
         assert_eq!(tip.metadata[0].value, "near");
         let cyl = &tip.cylinders[0];
         assert_eq!(rgba(&cyl.color), ClearanceBand::Near.rgba());
-        let size = cyl.size.clone().unwrap();
+        let size = cyl.size.unwrap();
         assert!((size.x - 0.1).abs() < 1e-12 && (size.z - 1.0).abs() < 1e-12);
         // The capsule runs along x at height 1: the cylinder's centre is its
         // middle and its z axis turns onto x.
-        let p = cyl.pose.clone().unwrap();
+        let p = cyl.pose.unwrap();
         let centre = p.position.unwrap();
         assert!((centre.x - 0.5).abs() < 1e-12 && (centre.z - 1.0).abs() < 1e-12);
         let q = p.orientation.unwrap();
@@ -180,10 +180,10 @@ axis = [0.0, 0.0, 1.0]
         let ends: Vec<f64> = tip
             .spheres
             .iter()
-            .map(|s| s.pose.clone().unwrap().position.unwrap().x)
+            .map(|s| s.pose.unwrap().position.unwrap().x)
             .collect();
         assert_eq!(ends, [0.0, 1.0]);
-        assert!((tip.spheres[0].size.clone().unwrap().y - 0.1).abs() < 1e-12);
+        assert!((tip.spheres[0].size.unwrap().y - 0.1).abs() < 1e-12);
     }
 
     #[test]
@@ -200,7 +200,7 @@ axis = [0.0, 0.0, 1.0]
             .transforms
             .iter()
             .all(|t| t.parent_frame_id == WORLD_FRAME));
-        assert_eq!(tf.transforms[1].translation.clone().unwrap().z, 1.0);
+        assert_eq!(tf.transforms[1].translation.unwrap().z, 1.0);
         let msg =
             crate::to_foxglove::fixtures::collision(&[("base", 0.01, false), ("tip", 1.0, true)]);
         let bands = link_bands(&msg);

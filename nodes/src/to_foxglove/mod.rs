@@ -9,6 +9,7 @@ mod arm;
 mod cloud;
 mod geometry;
 mod json;
+mod schema;
 mod surrogate;
 mod topics;
 
@@ -19,7 +20,8 @@ pub use json::{
     certificate_view, status_view, verdict_view, CertificateView, LinkView, StatusView,
     SurfaceCertificate, VerdictView,
 };
-pub use surrogate::{surface_rgba, surrogate_scene};
+pub use schema::schema_of;
+pub use surrogate::{surface_rgba, surrogate_scene, SURFACE_PER_CELL};
 pub use topics::{
     arm_scene_topic, arm_transforms_topic, certificate_topic, cloud_topic, status_topic,
     surrogate_topic, verdict_topic, BLEND_TOPIC,

@@ -25,6 +25,10 @@ fn entity_id(stream: &str, side: Side) -> String {
     format!("surrogate/{stream}/{}", side.name())
 }
 
+/// Subdivisions of each trim triangle of a surrogate's mesh, in the bridge
+/// and in recordings alike.
+pub const SURFACE_PER_CELL: usize = 2;
+
 /// The surfaces of `surrogate` (decoded from `msg`, published on `stream`),
 /// each kept trim triangle split into `per_cell * per_cell` triangles.
 pub fn surrogate_scene(
@@ -125,7 +129,7 @@ mod tests {
                 .indices
                 .iter()
                 .all(|&i| (i as usize) < list.points.len()));
-            let c = list.color.clone().unwrap();
+            let c = list.color.unwrap();
             assert_eq!([c.r, c.g, c.b, c.a], surface_rgba(mesh.side));
             assert_eq!(entity.frame_id, WORLD_FRAME);
         }

@@ -3,6 +3,7 @@
 //! only when some client subscribes to its channel: with no client, the
 //! bridge costs the graph its subscriptions and nothing more.
 
+use crate::to_foxglove::schema_of;
 use foxglove::{Channel, Context, Encode};
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -23,9 +24,12 @@ impl<T: Encode> Channels<T> {
 
     /// The channel of `topic`, advertised now if it is new.
     pub fn get(&mut self, topic: &str) -> &Channel<T> {
-        self.by_topic
-            .entry(topic.to_string())
-            .or_insert_with(|| self.context.channel_builder(topic).build::<T>())
+        self.by_topic.entry(topic.to_string()).or_insert_with(|| {
+            self.context
+                .channel_builder(topic)
+                .schema(schema_of::<T>())
+                .build::<T>()
+        })
     }
 
     /// Whether a client subscribes to `topic` (advertising it if new).

@@ -14,6 +14,7 @@ use super::arm_file::read_arm_file;
 use super::runtime::{run_node, NodeCommon, NodeContext};
 use super::viewer::{subscribe_drawables, BlendSender, Inbox};
 use crate::args::take_web_listen;
+use crate::to_foxglove::SURFACE_PER_CELL;
 use anyhow::{Context as _, Result};
 use bridge::{Bridge, BridgeConfig};
 use clap::Args;
@@ -53,8 +54,6 @@ pub struct FoxgloveArgs {
 
 /// Where `--listen` serves unless told otherwise (Foxglove's usual port).
 const DEFAULT_LISTEN: &str = "127.0.0.1:8765";
-/// Subdivisions of each trim triangle of a surrogate's mesh.
-const SURFACE_PER_CELL: usize = 2;
 
 pub fn run(mut args: FoxgloveArgs) -> Result<()> {
     let listen = take_web_listen(&mut args.common.zenoh, DEFAULT_LISTEN)?;
