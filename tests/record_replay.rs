@@ -3,7 +3,8 @@
 //! that were recorded; a recorder killed with SIGKILL leaves a file that
 //! `shroud mcap info` reads as truncated, with what its complete chunks hold;
 //! a full disk ends the recording with a finished file; Python's `mcap`
-//! package reads a recording.
+//! package reads a recording, and Lichtblick's MCAP loader decodes its
+//! Foxglove views.
 
 mod common;
 
@@ -161,6 +162,10 @@ fn replayed_clouds_give_byte_identical_surrogates() {
         ],
         &w,
     );
+    // By the time its status reaches us its session has had the router's
+    // declarations (sent when it connected), ours among them: its first
+    // surrogate will not be published before it knows of our subscriber.
+    StatusBoard::new(&session, ns).wait_for("fit", "a status", LONG, |_| true);
     let mut replay = start(
         &[
             "replay",
@@ -385,4 +390,73 @@ with open(sys.argv[1], "rb") as f:
         hex.as_str(),
         "the view's points are the cloud's"
     );
+}
+
+/// Lichtblick's way of opening a local MCAP file (`tests/browser/lichtblick_mcap.mjs`:
+/// @mcap/core's indexed reader, zstd, protobuf and JSON channels parsed from
+/// their schemas) takes a recording of a scanner and a fit node: every
+/// Foxglove view decodes, the clouds and surfaces are what the 3D panel
+/// needs, and only the raw msgpack channels are listed as problems.
+#[test]
+fn lichtblick_decodes_the_foxglove_views_of_a_recording() {
+    let packages = ["@mcap/core", "protobufjs", "@lichtblick/wasm-zstd"];
+    if !common::browser::node_modules_available("Lichtblick MCAP", &packages) {
+        return;
+    }
+    let (endpoint, session) = hub_on_free_port();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("lichtblick.mcap");
+    record_demo((&session, &endpoint), "rr-lichtblick", &file, 4);
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/browser/lichtblick_mcap.mjs");
+    let out = Command::new("node")
+        .arg(&script)
+        .arg(&file)
+        .output()
+        .expect("node runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // The raw channels, and only they, are problems.
+    let problems = v["problems"].as_array().unwrap();
+    assert!(!problems.is_empty());
+    for p in problems {
+        assert!(p["topic"].as_str().unwrap().starts_with("shroud/"), "{p}");
+        assert_eq!(p["message"], "Unsupported encoding msgpack", "{p}");
+    }
+    let topics = v["topics"].as_object().unwrap();
+    for (topic, t) in topics {
+        assert!(topic.starts_with("/shroud/"), "{topic}");
+        assert_eq!(t["decoded"], t["count"], "{topic}: every message decodes");
+    }
+    let raw = recorded(&file);
+    let clouds = raw["shroud/rr-lichtblick/cloud/s"].len() as u64;
+    assert_eq!(topics["/shroud/cloud/s"]["count"], clouds);
+    assert_eq!(topics["/shroud/cloud/s"]["schema"], "foxglove.PointCloud");
+    assert_eq!(
+        topics["/shroud/surrogate/s"]["schema"],
+        "foxglove.SceneUpdate"
+    );
+    assert_eq!(
+        topics["/shroud/certificate/s"]["schema"],
+        "shroud.CertificateView"
+    );
+    let cloud = &v["first"]["/shroud/cloud/s"];
+    assert_eq!(cloud["frameId"], "world");
+    assert_eq!(cloud["fields"], serde_json::json!(["x", "y", "z"]));
+    assert_eq!(cloud["points"], 3000);
+    // A sandwich: an upper and a lower surface, each with triangles.
+    let scene = v["first"]["/shroud/surrogate/s"]["entities"]
+        .as_array()
+        .unwrap();
+    assert_eq!(scene.len(), 2, "{scene:?}");
+    for entity in scene {
+        assert_eq!(entity["frameId"], "world");
+        assert!(entity["triangles"].as_u64().unwrap() > 100, "{entity}");
+    }
+    let certificate = &v["first"]["/shroud/certificate/s"];
+    assert_eq!(certificate["upper"]["violations"], 0);
+    assert!(certificate["upper"]["min_gap"].as_f64().unwrap() >= 0.0);
 }

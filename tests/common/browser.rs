@@ -28,21 +28,34 @@ fn script() -> PathBuf {
 /// True when the browser tools are there; otherwise prints SKIP (or panics
 /// under CI=true, where .ci/run installs them).
 pub fn browser_available() -> bool {
-    let modules =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/browser/node_modules/playwright-core");
     let chromium = std::env::var("SHROUD_CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
+    let missing = (!Path::new(&chromium).exists()).then_some("chromium");
+    tools_available("browser", &["playwright-core"], missing)
+}
+
+/// True when node and the npm packages `modules` of tests/browser are there;
+/// otherwise prints SKIP for `what` (or panics under CI=true).
+pub fn node_modules_available(what: &str, modules: &[&str]) -> bool {
+    tools_available(what, modules, None)
+}
+
+fn tools_available(what: &str, modules: &[&str], also_missing: Option<&str>) -> bool {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/browser/node_modules");
     let node = Command::new("node")
         .arg("--version")
         .output()
         .is_ok_and(|o| o.status.success());
-    let missing: Vec<&str> = [
-        (!node).then_some("node"),
-        (!Path::new(&chromium).exists()).then_some("chromium"),
-        (!modules.exists()).then_some("playwright-core (tests/browser/node_modules)"),
-    ]
-    .into_iter()
-    .flatten()
-    .collect();
+    let mut missing: Vec<String> = [(!node).then_some("node"), also_missing]
+        .into_iter()
+        .flatten()
+        .map(str::to_owned)
+        .collect();
+    missing.extend(
+        modules
+            .iter()
+            .filter(|m| !root.join(m).exists())
+            .map(|m| format!("{m} (tests/browser/node_modules)")),
+    );
     if missing.is_empty() {
         return true;
     }
@@ -51,7 +64,7 @@ pub fn browser_available() -> bool {
         std::env::var("CI").as_deref() != Ok("true"),
         "CI=true and {message}"
     );
-    eprintln!("SKIP: browser test needs {message}");
+    eprintln!("SKIP: {what} test needs {message}");
     false
 }
 

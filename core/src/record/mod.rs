@@ -4,14 +4,16 @@
 //! messages are laid out as MCAP schemas and channels ([`layout`]), when a chunk
 //! or a file ends ([`ChunkPolicy`], [`SplitPolicy`]), what is dropped when the
 //! disk is slow or full ([`ByteQueue`], [`DiskReserve`], [`DropCounts`]), and
-//! when a replayed message is due ([`ReplaySchedule`]). File I/O and zenoh live
-//! in `shroud-nodes`.
+//! when a replayed message is due ([`ReplaySchedule`]), and how a recording's
+//! bytes are read back, truncated or not ([`read_records`]). Files and zenoh
+//! live in `shroud-nodes`.
 
 mod drops;
 mod error;
 mod filter;
 pub mod layout;
 mod queue;
+mod read;
 mod rollover;
 mod schedule;
 
@@ -19,5 +21,6 @@ pub use drops::{DiskReserve, DropCause, DropCounts};
 pub use error::RecordError;
 pub use filter::TopicFilter;
 pub use queue::ByteQueue;
+pub use read::{read_records, Ending, ReadError};
 pub use rollover::{split_path, ChunkPolicy, SplitPolicy};
 pub use schedule::{Pace, ReplaySchedule};

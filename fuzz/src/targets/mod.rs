@@ -49,6 +49,8 @@ targets! {
     urdf,
     dashboard_frame,
     dashboard_command,
+    foxglove_blend_request,
+    mcap_recording,
     serial,
     slcan,
     candump,

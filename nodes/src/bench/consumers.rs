@@ -6,8 +6,9 @@
 //! this machine's cores), and with 1 and 3 WebSocket readers that take every
 //! frame as a browser does but draw nothing (browsers on another machine,
 //! the usual case: only the node's work stays on the robot), and with
-//! `shroud record` writing the clouds and surrogates to a temporary MCAP file
-//! (MB/s written, its drops), with each
+//! the Foxglove bridge with 0 and 1 clients subscribed to every channel, and
+//! with `shroud record` writing the clouds and surrogates to a temporary MCAP
+//! file, raw only and with the Foxglove views (MB/s written, its drops), with each
 //! consumer's CPU share, all in one run so that the ratios compare like with
 //! like on a noisy machine.
 
@@ -40,8 +41,11 @@ enum Consumer {
     Foxglove {
         clients: usize,
     },
-    /// `shroud record` of the clouds and surrogates to a temporary file.
-    Recorder,
+    /// `shroud record` of the clouds and surrogates to a temporary file,
+    /// with or without the Foxglove views.
+    Recorder {
+        foxglove: bool,
+    },
 }
 
 impl Consumer {
@@ -57,7 +61,12 @@ impl Consumer {
             Self::Foxglove { clients } => {
                 format!("foxglove bridge, {clients} client(s) subscribed to everything")
             }
-            Self::Recorder => "shroud record, cloud/* and surrogate/* (MCAP, zstd)".into(),
+            Self::Recorder { foxglove: true } => {
+                "shroud record, cloud/* and surrogate/* (MCAP, zstd), with Foxglove views".into()
+            }
+            Self::Recorder { foxglove: false } => {
+                "shroud record, cloud/* and surrogate/* (MCAP, zstd), raw only".into()
+            }
         }
     }
 }
@@ -161,7 +170,9 @@ async fn measure_all(args: &BenchArgs, browsers: &[usize], seconds: f64) -> Resu
         eprintln!("  {clients} Foxglove client(s) took {frames} frames");
     }
     graph.stop("foxglove");
-    rows.push(measure_recorder(&mut graph, &heard, seconds).await?);
+    for foxglove in [false, true] {
+        rows.push(measure_recorder(&mut graph, &heard, seconds, foxglove).await?);
+    }
     rows.push(measure(&heard, Consumer::Nothing, seconds, None).await?);
     graph.stop_all();
     Ok(rows)
@@ -209,14 +220,25 @@ async fn measure_recorder(
     graph: &mut BenchGraph,
     heard: &Arc<Mutex<Heard>>,
     seconds: f64,
+    foxglove: bool,
 ) -> Result<Row> {
     let file = std::env::temp_dir().join(format!("shroud-bench-{}.mcap", std::process::id()));
     let path = file.to_string_lossy().into_owned();
     let topics = "cloud/*,surrogate/*";
-    let args = ["-o", path.as_str(), "--topics", topics, "--overwrite"];
+    let views = foxglove.to_string();
+    let args = [
+        "-o",
+        path.as_str(),
+        "--topics",
+        topics,
+        "--overwrite",
+        "--foxglove",
+        views.as_str(),
+    ];
     let pid = graph.spawn("record", "record", &args, None)?;
     let started = std::time::Instant::now();
-    let mut row = measure(heard, Consumer::Recorder, seconds, Some((pid, None))).await?;
+    let consumer = Consumer::Recorder { foxglove };
+    let mut row = measure(heard, consumer, seconds, Some((pid, None))).await?;
     let bytes = std::fs::metadata(&file).map(|m| m.len()).unwrap_or(0);
     let mb_per_s = bytes as f64 / 1e6 / started.elapsed().as_secs_f64();
     let dropped = heard

@@ -280,8 +280,10 @@ fn print_summary(files: &[WrittenFile], recording: &Recording, elapsed: Duration
     let bytes: u64 = files.iter().map(|f| f.bytes).sum();
     let seconds = elapsed.as_secs_f64();
     println!(
-        "recorded {messages} of {} messages received, {:.3} MB in {} file(s) over {seconds:.1} s ({:.2} MB/s)",
+        "recorded {} of {} messages received (and {} Foxglove views): {messages} MCAP messages, {:.3} MB in {} file(s) over {seconds:.1} s ({:.2} MB/s)",
+        recording.counter("written"),
         recording.counter("received"),
+        recording.counter("views_written"),
         bytes as f64 / 1e6,
         files.len(),
         bytes as f64 / 1e6 / seconds.max(1e-9)
