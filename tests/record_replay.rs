@@ -76,6 +76,10 @@ fn record_demo(
             s(file),
             "--topics",
             "cloud/*,surrogate/*,status/*",
+            // A view of every cloud and surrogate (at 5 Hz, jitter could
+            // otherwise pace one out).
+            "--foxglove-rate",
+            "1000",
         ],
         &w,
     );
@@ -103,8 +107,8 @@ fn record_demo(
     );
     assert!(scanner.wait_exit(LONG).success(), "{}", scanner.output());
     // The last cloud's surrogate ends the run (the fit node's status
-    // counters lag its work); the recorder hears it from the same router at
-    // the same time, and gets a second to queue it.
+    // counters lag its work); the recorder hears it through the same hub at
+    // about the same time, and gets a second to queue it.
     let deadline = Instant::now() + LONG;
     loop {
         assert!(Instant::now() < deadline, "no surrogate of the last cloud");
@@ -144,7 +148,10 @@ fn replayed_clouds_give_byte_identical_surrogates() {
         .map(|b| SurrogateMessage::from_bytes(b).unwrap().0.source_sequence)
         .collect();
     assert_eq!(fitted, cloud_sequences);
-    assert!(clouds.len() >= 8, "{} clouds", clouds.len());
+    // The scanner's first cloud may go out before its session has heard of
+    // the subscribers (zenoh peers): then neither the recorder nor the fit
+    // node has it, which the line above checked.
+    assert!(clouds.len() >= 7, "{} clouds", clouds.len());
 
     let info = shroud(&["mcap", "info", s(&file)]);
     let text = String::from_utf8_lossy(&info.stdout);
@@ -162,9 +169,9 @@ fn replayed_clouds_give_byte_identical_surrogates() {
         ],
         &w,
     );
-    // By the time its status reaches us its session has had the router's
-    // declarations (sent when it connected), ours among them: its first
-    // surrogate will not be published before it knows of our subscriber.
+    // By the time its status reaches us its session has had our declarations
+    // (exchanged when it connected to the hub): its first surrogate will not
+    // be published before it knows of our subscriber.
     StatusBoard::new(&session, ns).wait_for("fit", "a status", LONG, |_| true);
     let mut replay = start(
         &[
@@ -212,10 +219,11 @@ fn a_recorder_killed_mid_recording_leaves_a_file_info_reads_as_truncated() {
         ],
         &w,
     );
-    // Chunks close every second: after 15 clouds, some are complete.
+    // Chunks close every second or 4 MB: after 30 clouds (3 s), some are
+    // complete on disk.
     let written = board
-        .wait_for("record", "15 clouds written", LONG, |st| {
-            st.counter("written") >= 15
+        .wait_for("record", "30 clouds written", LONG, |st| {
+            st.counter("written") >= 30
         })
         .counter("written");
     recorder.signal(libc::SIGKILL);
@@ -305,7 +313,19 @@ fn python_mcap_reads_a_recording() {
     let ns = "rr-python";
     let board = StatusBoard::new(&session, ns);
     let w = wiring(&endpoint, ns);
-    let mut recorder = start(&["record", "-o", s(&file), "--topics", "cloud/*"], &w);
+    // Every cloud gets its Foxglove view (the scanner's 10 Hz is below this).
+    let mut recorder = start(
+        &[
+            "record",
+            "-o",
+            s(&file),
+            "--topics",
+            "cloud/*",
+            "--foxglove-rate",
+            "1000",
+        ],
+        &w,
+    );
     board.wait_for("record", "a status", LONG, |_| true);
     // A scanner that keeps publishing: the last cloud of one that exits
     // could still be on its way when the recorder stops (the counts below
@@ -444,7 +464,8 @@ fn lichtblick_decodes_the_foxglove_views_of_a_recording() {
         "shroud.CertificateView"
     );
     let cloud = &v["first"]["/shroud/cloud/s"];
-    assert_eq!(cloud["frameId"], "world");
+    assert_eq!(cloud["frame_id"], "world");
+    assert_eq!(cloud["point_stride"], 12);
     assert_eq!(cloud["fields"], serde_json::json!(["x", "y", "z"]));
     assert_eq!(cloud["points"], 3000);
     // A sandwich: an upper and a lower surface, each with triangles.
@@ -453,7 +474,7 @@ fn lichtblick_decodes_the_foxglove_views_of_a_recording() {
         .unwrap();
     assert_eq!(scene.len(), 2, "{scene:?}");
     for entity in scene {
-        assert_eq!(entity["frameId"], "world");
+        assert_eq!(entity["frame_id"], "world");
         assert!(entity["triangles"].as_u64().unwrap() > 100, "{entity}");
     }
     let certificate = &v["first"]["/shroud/certificate/s"];

@@ -81,22 +81,26 @@ for await (const message of reader.readMessages({ topics: names, validateCrcs: t
   first[channel.topic] ??= summarize(value);
 }
 
-// What the test looks at in one decoded message.
+// What the test looks at in one decoded message (field names as the
+// descriptor gives them, snake_case, as Lichtblick's panels see them).
 function summarize(value) {
-  if (value.pointStride !== undefined) {
+  if (value.point_stride !== undefined) {
     return {
-      frameId: value.frameId,
-      pointStride: value.pointStride,
+      frame_id: value.frame_id,
+      point_stride: value.point_stride,
       fields: value.fields.map((f) => f.name),
-      points: value.data.length / value.pointStride,
+      points: value.data.length / value.point_stride,
     };
   }
   if (value.entities !== undefined) {
     return {
       entities: value.entities.map((e) => ({
         id: e.id,
-        frameId: e.frameId,
-        triangles: e.triangles.reduce((n, t) => n + t.points.length / 3, 0),
+        frame_id: e.frame_id,
+        triangles: e.triangles.reduce(
+          (n, t) => n + (t.indices.length > 0 ? t.indices.length : t.points.length) / 3,
+          0,
+        ),
       })),
     };
   }

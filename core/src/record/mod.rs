@@ -10,6 +10,7 @@
 
 mod drops;
 mod error;
+mod fields;
 mod filter;
 pub mod layout;
 mod queue;

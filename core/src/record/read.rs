@@ -7,6 +7,7 @@
 //! it before anything is allocated. The bytes come from any reader of a known
 //! size (a file in `shroud-nodes`, a slice in the fuzz target).
 
+use super::fields::{check_fields, is_read};
 use mcap::records::Record;
 use mcap::sans_io::linear_reader::{LinearReadEvent, LinearReader, LinearReaderOptions};
 use std::io::Read;
@@ -41,14 +42,15 @@ pub enum ReadError {
     Empty,
     #[error("is not an MCAP file (it does not start with the MCAP magic bytes)")]
     NotMcap,
-    #[error("is corrupt after byte {at_byte}: {reason}")]
+    #[error("is corrupt in its first {at_byte} bytes: {reason}")]
     Corrupt { at_byte: u64, reason: String },
     #[error("cannot be read: {0}")]
     Io(#[from] std::io::Error),
 }
 
-/// Reads the `size` bytes of `source`, handing each record to `visit` in file
-/// order; `visit` returns false to stop early (the ending is then
+/// Reads the `size` bytes of `source`, handing each record that shroud's
+/// readers use (header, schemas, channels, messages, metadata, chunk indexes;
+/// the others are skipped) to `visit` in file order; `visit` returns false to stop early (the ending is then
 /// `Complete`). An empty source, one that is not MCAP and a corrupt record
 /// are errors; a source that stops early is [`Ending::Truncated`].
 pub fn read_records(
@@ -95,6 +97,15 @@ pub fn read_records(
                 reader.notify_read(n);
             }
             LinearReadEvent::Record { opcode, data } => {
+                if !is_read(opcode) {
+                    continue;
+                }
+                check_fields(opcode, data).map_err(|e| {
+                    corrupt(
+                        consumed,
+                        format!("a corrupt record (opcode {opcode:#04x}): {e}"),
+                    )
+                })?;
                 let record = mcap::parse_record(opcode, data)
                     .map_err(|e| corrupt(consumed, format!("a corrupt record: {e}")))?;
                 if !visit(record) {

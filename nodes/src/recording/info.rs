@@ -84,9 +84,10 @@ impl Contents {
             }
             Record::ChunkIndex(i) => {
                 let entry = self.compression.entry(i.compression).or_default();
+                // Sizes from the file: a corrupt index must not overflow.
                 entry.chunks += 1;
-                entry.compressed += i.compressed_size;
-                entry.uncompressed += i.uncompressed_size;
+                entry.compressed = entry.compressed.saturating_add(i.compressed_size);
+                entry.uncompressed = entry.uncompressed.saturating_add(i.uncompressed_size);
             }
             Record::Metadata(m) => self.metadata.push((m.name, m.metadata)),
             _ => {}

@@ -30,6 +30,8 @@ pub struct FileOptions {
     pub compression: Option<mcap::Compression>,
     /// The `shroud.recording` metadata record.
     pub metadata: BTreeMap<String, String>,
+    /// Replace existing files (else an existing file is an error).
+    pub overwrite: bool,
 }
 
 pub struct McapFile {
@@ -46,8 +48,19 @@ pub struct McapFile {
 
 impl McapFile {
     pub fn create(path: &Path, options: &FileOptions) -> Result<Self> {
-        let file =
-            File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+        // A split file that exists is not replaced either (`--overwrite`).
+        let file = std::fs::OpenOptions::new()
+            .write(true)
+            .create(true)
+            .truncate(true)
+            .create_new(!options.overwrite)
+            .open(path)
+            .map_err(|e| match e.kind() {
+                std::io::ErrorKind::AlreadyExists => {
+                    anyhow::anyhow!("{} exists (give --overwrite to replace it)", path.display())
+                }
+                _ => anyhow::Error::new(e).context(format!("cannot create {}", path.display())),
+            })?;
         let (sink, len) = Counting::new(BufWriter::with_capacity(1 << 20, file));
         // Chunks are closed by the recorder (`ChunkPolicy`), never by size
         // inside the crate, so that free space is checked before each one.

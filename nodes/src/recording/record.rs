@@ -7,7 +7,7 @@
 use super::mcap_file::{FileOptions, McapFile};
 use super::queue::WriteQueue;
 use super::shared::Recording;
-use super::views::FoxgloveViews;
+use super::views::{FoxgloveViews, ViewSettings};
 use super::writer::{run_writer, Arrival, WriterPlan, WrittenFile};
 use crate::node::{read_arm_file, run_node, NodeCommon, NodeContext};
 use crate::transport::unix_ns;
@@ -63,6 +63,10 @@ pub struct RecordArgs {
     /// stride; the raw cloud is recorded whole).
     #[arg(long, default_value_t = 50_000)]
     pub points_budget: usize,
+    /// Most Foxglove views a second of each cloud, surrogate and arm stream
+    /// (the raw messages are all recorded).
+    #[arg(long, value_name = "HZ", default_value_t = 10.0)]
+    pub foxglove_rate: f64,
     /// An arm file (as the guard's) whose arm is drawn at its recorded joint
     /// states in the Foxglove views. Repeatable.
     #[arg(long = "arm-file", value_name = "FILE")]
@@ -157,6 +161,7 @@ fn plan(args: &RecordArgs) -> Result<Plan> {
             options: FileOptions {
                 compression,
                 metadata: recording_metadata(namespace, &args.topics, env!("CARGO_PKG_VERSION")),
+                overwrite: args.overwrite,
             },
             views,
         },
@@ -177,16 +182,22 @@ fn views(args: &RecordArgs) -> Result<FoxgloveViews> {
         "--verdict-timeout must be more than 0 and at most 3600 seconds, not {}",
         args.verdict_timeout
     );
+    anyhow::ensure!(
+        args.foxglove_rate.is_finite() && args.foxglove_rate > 0.0 && args.foxglove_rate <= 1000.0,
+        "--foxglove-rate must be more than 0 and at most 1000 views a second, not {}",
+        args.foxglove_rate
+    );
     let arms = args
         .arm_files
         .iter()
         .map(|path| read_arm_file(path).map(|file| file.arm))
         .collect::<Result<Vec<_>>>()?;
-    Ok(FoxgloveViews::new(
-        args.points_budget,
+    Ok(FoxgloveViews::new(ViewSettings {
+        point_budget: args.points_budget,
+        pace_ns: (1e9 / args.foxglove_rate) as u64,
         arms,
-        (args.verdict_timeout * 1e9) as u64,
-    ))
+        verdict_timeout_ns: (args.verdict_timeout * 1e9) as u64,
+    }))
 }
 
 fn record(ctx: Arc<NodeContext>, plan: Plan, first: McapFile) -> Result<()> {

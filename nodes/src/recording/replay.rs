@@ -92,26 +92,37 @@ fn plan(args: &ReplayArgs) -> Result<Plan> {
 
 fn replay(ctx: Arc<NodeContext>, plan: Plan) -> Result<()> {
     let started = Instant::now();
+    // Moves on by the time spent waiting for subscribers, so that messages
+    // keep their spacing after a wait rather than going out in a burst.
+    let mut origin = started;
     let mut schedule = ReplaySchedule::new(plan.pace);
     let mut out = Publishers::new(&ctx, started + plan.wait_subscribers);
     let mut warned = false;
     for pass in 0u64.. {
         ctx.metrics.set("pass", pass as f64);
         let mut pass_state = Pass::default();
+        let mut published = 0u64;
         let ending = read_records(&plan.file, |record| {
             pass_state.take(
                 record,
                 &plan.filter,
                 &mut |key: &TopicKey, log_ns: u64, data: &[u8]| {
-                    let due = started + Duration::from_nanos(schedule.due_ns(log_ns));
+                    let due = origin + Duration::from_nanos(schedule.due_ns(log_ns));
                     if !sleep_until(&ctx, due) {
                         return Ok(false);
                     }
-                    out.publish(key, data)?;
+                    origin += out.publish(key, data)?;
+                    published += 1;
                     Ok(true)
                 },
             )
         })?;
+        if published == 0 && !ctx.stopping() {
+            anyhow::bail!(
+                "nothing to replay: no message of {} is on a shroud channel that --topics takes",
+                plan.file.display()
+            );
+        }
         if let (Ending::Truncated { reason, .. }, false) = (&ending, warned) {
             tracing::warn!(
                 "{} is truncated ({reason}): replayed up to its last complete chunk",
@@ -212,11 +223,16 @@ impl<'a> Publishers<'a> {
         }
     }
 
-    fn publish(&mut self, key: &TopicKey, data: &[u8]) -> Result<()> {
+    /// Publishes `data` on `key`'s topic; returns the time spent waiting
+    /// for the topic's first subscriber (zero but for a new topic).
+    fn publish(&mut self, key: &TopicKey, data: &[u8]) -> Result<Duration> {
         let topic = (key.kind, key.name.clone());
+        let mut waited = Duration::ZERO;
         if !self.by_topic.contains_key(&topic) {
             let publisher = self.ctx.publisher(key.kind, &key.name)?;
+            let before = Instant::now();
             self.wait_for_subscriber(&publisher);
+            waited = before.elapsed();
             self.by_topic.insert(topic.clone(), publisher);
         }
         let publisher = &self.by_topic[&topic];
@@ -227,7 +243,7 @@ impl<'a> Publishers<'a> {
                 tracing::warn!("publish {}: {e}", publisher.key_expr());
             }
         }
-        Ok(())
+        Ok(waited)
     }
 
     fn wait_for_subscriber(&self, publisher: &zenoh::pubsub::Publisher<'static>) {

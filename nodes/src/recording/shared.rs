@@ -25,6 +25,7 @@ impl Recording {
         }
         metrics.set_counter("views_written", 0);
         metrics.set_counter("views_failed", 0);
+        metrics.set_counter("views_paced", 0);
         Self {
             metrics,
             drops: Mutex::default(),
@@ -42,9 +43,11 @@ impl Recording {
         self.metrics.add("bytes_written", bytes);
     }
 
-    /// Foxglove views written (`--foxglove`).
-    pub fn views_written(&self, n: u64) {
+    /// Foxglove views written (`--foxglove`), and the messages of heavy
+    /// streams left without a view by `--foxglove-rate` so far.
+    pub fn views_written(&self, n: u64, paced: u64) {
         self.metrics.add("views_written", n);
+        self.metrics.set_counter("views_paced", paced);
     }
 
     /// A recorded message whose Foxglove view could not be made (the raw

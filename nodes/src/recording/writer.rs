@@ -1,9 +1,10 @@
 //! The recorder's writer thread: takes arrivals off the queue and writes them
 //! to the MCAP file, closing chunks by core's [`ChunkPolicy`], checking free
 //! space (statvfs) before each chunk against the [`DiskReserve`], starting a
-//! new file by the [`SplitPolicy`], and finishing the file whatever happens:
-//! on a full disk or a write error it stops taking messages (they are counted
-//! as drops) and ends the file cleanly.
+//! new file by the [`SplitPolicy`], and ending the file whatever happens: on
+//! a full disk it stops taking messages (they are counted as drops) and
+//! finishes the file cleanly; on a write error it stops too and tries to
+//! finish it (a disk that refuses leaves it truncated, still readable).
 
 use super::disk::free_bytes;
 use super::mcap_file::{FileOptions, McapFile, StoredMessage};
@@ -114,7 +115,12 @@ impl Writer {
             .file
             .as_ref()
             .map_or((0, 0), |f| (f.bytes(), f.messages()));
-        if self.plan.split.should_split(bytes, messages, len) {
+        // The open chunk is still in memory: it counts toward the file.
+        if self
+            .plan
+            .split
+            .should_split(bytes + self.chunk_bytes, messages, len)
+        {
             self.finish_file();
             self.index += 1;
             let path = split_path(&self.plan.base, true, self.index);
@@ -137,63 +143,78 @@ impl Writer {
             publish_ns: arrival.publish_ns,
             payload,
         })?;
-        if self.chunk_bytes == 0 {
-            self.chunk_started = Instant::now();
-        }
+        let message = Some((&arrival.key, payload));
+        let views = self.write_views(message, arrival.log_ns, arrival.publish_ns)?;
         self.recording.written(len);
-        let views = self.write_views(arrival, payload)?;
-        self.chunk_bytes += len + views;
+        self.add_to_chunk(len + views);
         Ok(())
     }
 
-    /// Writes the Foxglove views of a message just written (and the
-    /// verdicts due); returns their bytes. A message that does not convert
-    /// is counted and logged (`views_failed`); its raw record stays.
-    fn write_views(&mut self, arrival: &Arrival, payload: &[u8]) -> Result<u64> {
+    /// Bytes just written into the open chunk (which starts its age with
+    /// its first record).
+    fn add_to_chunk(&mut self, bytes: u64) {
+        if bytes == 0 {
+            return;
+        }
+        if self.chunk_bytes == 0 {
+            self.chunk_started = Instant::now();
+        }
+        self.chunk_bytes += bytes;
+    }
+
+    /// Writes the verdict views due at `log_ns` and the Foxglove views of
+    /// `message` (a message just written), returning their bytes. A message
+    /// that does not convert is counted and logged (`views_failed`): its raw
+    /// record stays, and the verdicts due are written all the same.
+    fn write_views(
+        &mut self,
+        message: Option<(&TopicKey, &[u8])>,
+        log_ns: u64,
+        publish_ns: u64,
+    ) -> Result<u64> {
         let (Some(views), Some(file)) = (self.plan.views.as_mut(), self.file.as_mut()) else {
             return Ok(0);
         };
-        let log_ns = arrival.log_ns;
-        let made = views.periodic(log_ns).and_then(|mut made| {
-            made.extend(views.of_message(&arrival.key, payload, log_ns)?);
-            Ok(made)
-        });
-        let made = match made {
-            Ok(made) => made,
-            Err(e) => {
-                self.recording.view_failed(&e);
-                return Ok(0);
+        let mut made = Vec::new();
+        let of_message = message.map(|(key, payload)| views.of_message(key, payload, log_ns));
+        for result in [Some(views.periodic(log_ns)), of_message]
+            .into_iter()
+            .flatten()
+        {
+            match result {
+                Ok(more) => made.extend(more),
+                Err(e) => self.recording.view_failed(&e),
             }
-        };
+        }
         let mut bytes = 0;
         for view in &made {
-            file.write_view(view, log_ns, arrival.publish_ns)?;
+            file.write_view(view, log_ns, publish_ns)?;
             bytes += view.data.len() as u64;
         }
-        self.recording.views_written(made.len() as u64);
+        self.recording
+            .views_written(made.len() as u64, views.paced());
         Ok(bytes)
     }
 
     /// While no message comes, the verdicts still go out every 100 ms (a
-    /// silent guard shows as `no-verdict` in the recording).
+    /// silent guard shows as `no-verdict` in the recording), into chunks
+    /// that close and are checked against the disk as any other.
     fn write_periodic_views(&mut self, now_ns: u64) {
-        let (Some(views), Some(file)) = (self.plan.views.as_mut(), self.file.as_mut()) else {
+        if self.plan.views.is_none() || self.file.is_none() {
             return;
-        };
-        let made = match views.periodic(now_ns) {
-            Ok(made) => made,
-            Err(e) => return self.recording.view_failed(&e),
-        };
-        for view in &made {
-            if let Err(e) = file.write_view(view, now_ns, now_ns) {
+        }
+        if self.chunk_bytes == 0 && !self.disk_admits_chunk() {
+            return;
+        }
+        match self.write_views(None, now_ns, now_ns) {
+            Ok(bytes) => self.add_to_chunk(bytes),
+            Err(e) => {
                 tracing::error!("recording stopped: {e:#}");
                 self.recording
                     .refuse(DropCause::WriteError, format!("{e:#}"));
                 self.finish_file();
-                return;
             }
         }
-        self.recording.views_written(made.len() as u64);
     }
 
     /// Before a chunk starts: is there room for it and the reserve? If not,

@@ -10,7 +10,8 @@ use foxglove::messages::{
     SpherePrimitive,
 };
 use glam::{DQuat, DVec3};
-use shroud_core::message::CollisionMessage;
+use shroud_core::guard::VerdictWatch;
+use shroud_core::message::{CollisionMessage, GuardVerdict};
 use shroud_core::scene::{ClearanceBand, PosedArm};
 use std::collections::BTreeMap;
 
@@ -24,6 +25,16 @@ pub fn link_bands(msg: &CollisionMessage) -> BTreeMap<String, ClearanceBand> {
         .iter()
         .map(|l| (l.link.clone(), ClearanceBand::of(l, msg.stop_distance)))
         .collect()
+}
+
+/// The bands of the verdict `watch` vouches for at `now_ns`; none after a
+/// silence or before the first verdict (grey: nothing is known).
+pub fn vouched_bands(watch: Option<&VerdictWatch>, now_ns: u64) -> BTreeMap<String, ClearanceBand> {
+    watch
+        .map(|w| w.shown(now_ns))
+        .filter(|shown| shown.verdict != GuardVerdict::NoVerdict)
+        .and_then(|shown| shown.message.map(link_bands))
+        .unwrap_or_default()
 }
 
 /// `arm`'s collision shapes at `stamp_ns`, coloured by `bands` (a link

@@ -2,7 +2,7 @@
 //! and Raw Message panels: flat, named numeric fields (`min_clearance`,
 //! `upper.min_gap`, `counters.received`), JSON's `null` where a number is
 //! infinite or NaN (JSON has neither). Each derives its JSON Schema, which
-//! the channel advertises (FORMATS.md, "Foxglove JSON channels").
+//! the channel advertises (FORMATS.md, "Foxglove channels").
 
 use schemars::JsonSchema;
 use serde::Serialize;
@@ -41,6 +41,10 @@ pub struct LinkView {
     /// `stop`, `near`, `clear` or `unobserved` ([`ClearanceBand`]).
     pub band: String,
 }
+
+/// How often verdict views go out, on the bridge and in recordings: a guard
+/// that falls silent shows as `no-verdict` within this of its timeout.
+pub const VERDICT_PERIOD_NS: u64 = 100_000_000;
 
 /// The verdict shown for `arm`.
 pub fn verdict_view(arm: &str, shown: &ShownVerdict<'_>) -> VerdictView {

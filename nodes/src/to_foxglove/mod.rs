@@ -13,12 +13,12 @@ mod schema;
 mod surrogate;
 mod topics;
 
-pub use arm::{arm_scene, arm_transforms, link_bands, NO_VERDICT_RGBA};
+pub use arm::{arm_scene, arm_transforms, link_bands, vouched_bands, NO_VERDICT_RGBA};
 pub use cloud::point_cloud;
 pub use geometry::{timestamp, WORLD_FRAME};
 pub use json::{
     certificate_view, status_view, verdict_view, CertificateView, LinkView, StatusView,
-    SurfaceCertificate, VerdictView,
+    SurfaceCertificate, VerdictView, VERDICT_PERIOD_NS,
 };
 pub use schema::schema_of;
 pub use surrogate::{surface_rgba, surrogate_scene, SURFACE_PER_CELL};

@@ -10,9 +10,9 @@ use crate::node::viewer::{Arrival, Inbox};
 use crate::node::NodeContext;
 use crate::to_foxglove::{
     arm_scene, arm_scene_topic, arm_transforms, arm_transforms_topic, certificate_topic,
-    certificate_view, cloud_topic, link_bands, point_cloud, status_topic, status_view,
-    surrogate_scene, surrogate_topic, verdict_topic, verdict_view, CertificateView, StatusView,
-    VerdictView,
+    certificate_view, cloud_topic, point_cloud, status_topic, status_view, surrogate_scene,
+    surrogate_topic, verdict_topic, verdict_view, vouched_bands, CertificateView, StatusView,
+    VerdictView, VERDICT_PERIOD_NS,
 };
 use crate::transport::monotonic_ns;
 use foxglove::messages::{FrameTransforms, PointCloud, SceneUpdate};
@@ -20,8 +20,8 @@ use foxglove::Context;
 use shroud_core::dashboard::BlendPalette;
 use shroud_core::guard::{ArmModel, VerdictWatch};
 use shroud_core::message::{
-    CloudView, CollisionMessage, GuardVerdict, JointStateMessage, NodeStatusMessage,
-    SurrogateMessage, TopicKey, TopicKind,
+    CloudView, CollisionMessage, JointStateMessage, NodeStatusMessage, SurrogateMessage, TopicKey,
+    TopicKind,
 };
 use shroud_core::pace::Paced;
 use shroud_core::scene::pose_arm;
@@ -29,8 +29,6 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Duration;
 
-/// How often verdicts are logged.
-const VERDICT_PERIOD_NS: u64 = 100_000_000;
 /// How often the bridge's own gauges and counters are refreshed.
 const METRICS_PERIOD_NS: u64 = 500_000_000;
 
@@ -212,15 +210,7 @@ impl Bridge {
         if self.out.scenes.wanted(&scene) || self.out.transforms.wanted(&frames) {
             let posed = pose_arm(model, &msg).map_err(|e| e.to_string())?;
             let now = monotonic_ns();
-            // Bands from a verdict the watch still vouches for; none after a
-            // silence (grey: nothing is known).
-            let bands = self
-                .watches
-                .get(&msg.arm)
-                .map(|w| w.shown(now))
-                .filter(|shown| shown.verdict != GuardVerdict::NoVerdict)
-                .and_then(|shown| shown.message.map(link_bands))
-                .unwrap_or_default();
+            let bands = vouched_bands(self.watches.get(&msg.arm), now);
             let logged = self.out.scenes.log_with(&scene, || {
                 Ok::<_, String>(arm_scene(&posed, &bands, msg.stamp_ns))
             })?;

@@ -70,8 +70,10 @@ pub fn run(mut args: FoxgloveArgs) -> Result<()> {
         "--backlog must be 1 to 1024 messages"
     );
     anyhow::ensure!(
-        args.verdict_timeout.is_finite() && args.verdict_timeout > 0.0,
-        "--verdict-timeout must be a positive number of seconds"
+        args.verdict_timeout.is_finite()
+            && args.verdict_timeout > 0.0
+            && args.verdict_timeout <= 3600.0,
+        "--verdict-timeout must be more than 0 and at most 3600 seconds"
     );
     let arms = args
         .arm_files
