@@ -157,7 +157,11 @@ fn a_foxglove_client_sees_the_graph_and_drives_a_drop() {
         "{points} points, budget {BUDGET}"
     );
     assert_eq!(cloud["stride"], 12, "xyz f32, no intensity");
-    let heard = CloudMessage::from_bytes(&clouds.recv().unwrap().payload().to_bytes()).unwrap();
+    let sample = clouds
+        .recv_timeout(Duration::from_secs(30))
+        .expect("the test subscriber")
+        .expect("a cloud within 30 s");
+    let heard = CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
     assert_eq!(points, heard.point_array().unwrap().len().min(BUDGET));
     // The scene is still (time scale 0): every cloud has the same bounds.
     let (lo, hi) = bounds(&heard);

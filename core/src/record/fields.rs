@@ -15,8 +15,10 @@ enum Field {
     Prefixed,
     /// A u32 byte length, then `<string, string>` pairs within it.
     StringMap,
-    /// A u32 byte length, then fixed-size entries within it.
-    FixedMap,
+    /// A u32 byte length, then entries of this many bytes within it (the
+    /// crate reads whole entries while short of the length: one that is
+    /// not a multiple would shift every field after it).
+    FixedMap(usize),
 }
 
 use Field::{Fixed, FixedMap, Prefixed, StringMap};
@@ -31,7 +33,8 @@ const LAYOUTS: [(u8, &[Field]); 6] = [
     (op::METADATA, &[Prefixed, StringMap]),
     (
         op::CHUNK_INDEX,
-        &[Fixed(32), FixedMap, Fixed(8), Prefixed, Fixed(16)],
+        // message_index_offsets: u16 channel id -> u64 offset.
+        &[Fixed(32), FixedMap(10), Fixed(8), Prefixed, Fixed(16)],
     ),
 ];
 
@@ -50,7 +53,16 @@ pub fn check_fields(opcode: u8, data: &[u8]) -> Result<(), String> {
         rest = match field {
             Fixed(n) => take(rest, *n)?.1,
             Prefixed => prefixed(rest)?.1,
-            FixedMap => prefixed(rest)?.1,
+            FixedMap(entry) => {
+                let (map, after) = prefixed(rest)?;
+                if map.len() % entry != 0 {
+                    return Err(format!(
+                        "a map of {} bytes is not a whole number of {entry}-byte entries",
+                        map.len()
+                    ));
+                }
+                after
+            }
             StringMap => {
                 let (mut map, after) = prefixed(rest)?;
                 while !map.is_empty() {
@@ -110,6 +122,15 @@ mod tests {
         channel[at..at + 4].copy_from_slice(&u32::MAX.to_le_bytes());
         assert!(check_fields(op::CHANNEL, &channel).is_err());
         assert!(check_fields(op::MESSAGE, &[0; 21]).is_err());
+        // A chunk index whose offset map is not whole entries.
+        let mut index = vec![0u8; 32];
+        index.extend(5u32.to_le_bytes());
+        index.extend([0u8; 5]);
+        index.extend([0u8; 8]);
+        index.extend(string("zstd"));
+        index.extend([0u8; 16]);
+        let e = check_fields(op::CHUNK_INDEX, &index).unwrap_err();
+        assert!(e.contains("whole number"), "{e}");
         assert!(is_read(op::MESSAGE) && !is_read(op::STATISTICS));
     }
 }

@@ -8,6 +8,7 @@
 //! bytes are read back, truncated or not ([`read_records`]). Files and zenoh
 //! live in `shroud-nodes`.
 
+mod chunk;
 mod drops;
 mod error;
 mod fields;

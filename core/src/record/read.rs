@@ -7,7 +7,9 @@
 //! it before anything is allocated. The bytes come from any reader of a known
 //! size (a file in `shroud-nodes`, a slice in the fuzz target).
 
+use super::chunk;
 use super::fields::{check_fields, is_read};
+use mcap::records::op;
 use mcap::records::Record;
 use mcap::sans_io::linear_reader::{LinearReadEvent, LinearReader, LinearReaderOptions};
 use std::io::Read;
@@ -61,10 +63,13 @@ pub fn read_records(
     if size == 0 {
         return Err(ReadError::Empty);
     }
+    let limit = record_limit(size);
+    // Chunks come whole, and shroud opens them (`chunk.rs`): a chunk's
+    // messages are handed out only once all of it checked out.
     let mut reader = LinearReader::new_with_options(
         LinearReaderOptions::default()
-            .with_prevalidate_chunk_crcs(true)
-            .with_record_length_limit(record_limit(size)),
+            .with_emit_chunks(true)
+            .with_record_length_limit(limit),
     );
     let mut consumed: u64 = 0;
     let corrupt = |at_byte, reason: String| ReadError::Corrupt { at_byte, reason };
@@ -97,19 +102,15 @@ pub fn read_records(
                 reader.notify_read(n);
             }
             LinearReadEvent::Record { opcode, data } => {
-                if !is_read(opcode) {
-                    continue;
-                }
-                check_fields(opcode, data).map_err(|e| {
-                    corrupt(
-                        consumed,
-                        format!("a corrupt record (opcode {opcode:#04x}): {e}"),
-                    )
-                })?;
-                let record = mcap::parse_record(opcode, data)
-                    .map_err(|e| corrupt(consumed, format!("a corrupt record: {e}")))?;
-                if !visit(record) {
-                    return Ok(Ending::Complete);
+                let take = |opcode: u8, data: &[u8]| hand_out(opcode, data, &mut visit);
+                let go_on = match opcode {
+                    op::CHUNK => chunk::for_each_record(data, limit, take),
+                    _ => hand_out(opcode, data, &mut visit),
+                };
+                match go_on {
+                    Ok(true) => {}
+                    Ok(false) => return Ok(Ending::Complete),
+                    Err(reason) => return Err(corrupt(consumed, reason)),
                 }
             }
         }
@@ -122,7 +123,23 @@ fn record_limit(size: u64) -> usize {
     let scaled = usize::try_from(size)
         .unwrap_or(usize::MAX)
         .saturating_mul(RECORD_PER_FILE_BYTE);
-    scaled.max(RECORD_FLOOR).min(RECORD_LIMIT)
+    scaled.clamp(RECORD_FLOOR, RECORD_LIMIT)
+}
+
+/// Checks, parses and visits one record (skipped if shroud's readers do not
+/// use its kind); whether to go on, or why the record is corrupt.
+fn hand_out(
+    opcode: u8,
+    data: &[u8],
+    visit: &mut impl FnMut(Record<'_>) -> bool,
+) -> Result<bool, String> {
+    if !is_read(opcode) {
+        return Ok(true);
+    }
+    check_fields(opcode, data)
+        .map_err(|e| format!("a corrupt record (opcode {opcode:#04x}): {e}"))?;
+    let record = mcap::parse_record(opcode, data).map_err(|e| format!("a corrupt record: {e}"))?;
+    Ok(visit(record))
 }
 
 fn truncated(at_byte: u64, reason: &str) -> Ending {

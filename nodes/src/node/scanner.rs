@@ -31,6 +31,11 @@ pub struct ScannerArgs {
     /// Stream name: clouds go to `shroud/<ns>/cloud/<stream>`.
     #[arg(long, default_value = "sim")]
     pub stream: String,
+    /// Before the first frame, wait up to this many seconds for a
+    /// subscriber (a zenoh peer drops what it publishes before it has heard
+    /// of one; useful with --frames).
+    #[arg(long, default_value_t = 0.0, value_name = "S")]
+    pub wait_subscribers: f64,
     /// Stop after this many frames (0: run until stopped).
     #[arg(long, default_value_t = 0)]
     pub frames: u64,
@@ -52,6 +57,10 @@ pub fn run(args: ScannerArgs) -> Result<()> {
         "--rate must be in (0, 1000] frames per second"
     );
     anyhow::ensure!(args.time_scale.is_finite(), "--time-scale must be finite");
+    anyhow::ensure!(
+        args.wait_subscribers.is_finite() && (0.0..=3600.0).contains(&args.wait_subscribers),
+        "--wait-subscribers must be between 0 and 3600 seconds"
+    );
     let scene = scene(&args)?;
     let common = args.common.clone();
     run_node(&common, "scanner", move |ctx| serve(ctx, args, scene))
@@ -99,6 +108,11 @@ fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene) -> Result<()> {
     let points = scene.points();
     let writer = ctx.payload_writer(4 * (points * 12 + 4096));
     tracing::info!(%key, scene = scene.name(), points, rate = args.rate, shm = writer.uses_shm(), "scanning");
+    if args.wait_subscribers > 0.0
+        && !ctx.wait_for_subscriber(&publisher, Duration::from_secs_f64(args.wait_subscribers))
+    {
+        tracing::warn!(%key, "no subscriber after --wait-subscribers: publishing anyway");
+    }
     let period = Duration::from_secs_f64(1.0 / args.rate);
     let start = Instant::now();
     let mut next = start;

@@ -231,7 +231,8 @@ impl<'a> Publishers<'a> {
         if !self.by_topic.contains_key(&topic) {
             let publisher = self.ctx.publisher(key.kind, &key.name)?;
             let before = Instant::now();
-            self.wait_for_subscriber(&publisher);
+            let patience = self.wait_until.saturating_duration_since(before);
+            self.ctx.wait_for_subscriber(&publisher, patience);
             waited = before.elapsed();
             self.by_topic.insert(topic.clone(), publisher);
         }
@@ -244,19 +245,5 @@ impl<'a> Publishers<'a> {
             }
         }
         Ok(waited)
-    }
-
-    fn wait_for_subscriber(&self, publisher: &zenoh::pubsub::Publisher<'static>) {
-        while Instant::now() < self.wait_until && !self.ctx.stopping() {
-            let matched = publisher
-                .matching_status()
-                .wait()
-                .map(|s| s.matching())
-                .unwrap_or(true);
-            if matched {
-                return;
-            }
-            std::thread::sleep(STOP_POLL);
-        }
     }
 }

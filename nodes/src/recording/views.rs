@@ -167,6 +167,11 @@ impl FoxgloveViews {
         }
     }
 
+    /// Whether [`Self::periodic`] would write anything at `log_ns`.
+    pub fn verdicts_due(&self, log_ns: u64) -> bool {
+        !self.watches.is_empty() && log_ns >= self.next_verdicts_ns
+    }
+
     /// The verdict of every arm seen so far, if `VERDICT_PERIOD_NS` of log
     /// time passed since they were last written.
     pub fn periodic(&mut self, log_ns: u64) -> Result<Vec<View>, String> {

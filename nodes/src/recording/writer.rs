@@ -200,7 +200,12 @@ impl Writer {
     /// silent guard shows as `no-verdict` in the recording), into chunks
     /// that close and are checked against the disk as any other.
     fn write_periodic_views(&mut self, now_ns: u64) {
-        if self.plan.views.is_none() || self.file.is_none() {
+        let due = self
+            .plan
+            .views
+            .as_ref()
+            .is_some_and(|v| v.verdicts_due(now_ns));
+        if !due || self.file.is_none() {
             return;
         }
         if self.chunk_bytes == 0 && !self.disk_admits_chunk() {

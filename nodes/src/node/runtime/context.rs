@@ -77,6 +77,32 @@ impl NodeContext {
         topic_publisher(&self.session, self.key(kind, name)?, kind)
     }
 
+    /// Waits until `publisher` has a subscriber, at most `patience` (or
+    /// until the node stops); whether one is there. A zenoh peer drops what
+    /// it publishes before it has heard of any subscriber: a short run (a
+    /// scanner's `--frames`, a replay) waits for its audience first.
+    pub fn wait_for_subscriber(
+        &self,
+        publisher: &zenoh::pubsub::Publisher<'static>,
+        patience: std::time::Duration,
+    ) -> bool {
+        let until = std::time::Instant::now() + patience;
+        loop {
+            let matched = publisher
+                .matching_status()
+                .wait()
+                .map(|s| s.matching())
+                .unwrap_or(true);
+            if matched {
+                return true;
+            }
+            if std::time::Instant::now() >= until || self.stopping() {
+                return false;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+    }
+
     /// A payload writer with a shared segment of `pool_bytes`, through shared
     /// memory unless the node runs with `--shm off`.
     pub fn payload_writer(&self, pool_bytes: usize) -> PayloadWriter {
