@@ -7,11 +7,11 @@
 
 use super::reader::{read_records, Ending};
 use crate::node::{run_node, NodeCommon, NodeContext};
-use crate::transport::PayloadWriter;
+use crate::transport::{unix_ns, PayloadWriter};
 use anyhow::Result;
 use clap::Args;
 use mcap::records::Record;
-use shroud_core::message::{TopicKey, TopicKind};
+use shroud_core::message::{CloudMessage, JointStateMessage, TopicKey, TopicKind};
 use shroud_core::record::layout::{replayable, ChannelDescription};
 use shroud_core::record::{Pace, ReplaySchedule, TopicFilter};
 use std::collections::HashMap;
@@ -43,6 +43,11 @@ pub struct ReplayArgs {
     /// before its first message (0: publish at once).
     #[arg(long, value_name = "S", default_value_t = 0.0)]
     pub wait_subscribers: f64,
+    /// Stamp clouds and joint states with the time they are published, as a
+    /// live sensor would (a guard refuses stamps far from its clock); off,
+    /// every message is published exactly as recorded.
+    #[arg(long)]
+    pub restamp: bool,
 }
 
 /// What a replay was told.
@@ -52,6 +57,7 @@ struct Plan {
     looping: bool,
     filter: TopicFilter,
     wait_subscribers: Duration,
+    restamp: bool,
 }
 
 /// Publishing shared memory segment: a few large clouds.
@@ -87,6 +93,7 @@ fn plan(args: &ReplayArgs) -> Result<Plan> {
         looping: args.looping,
         filter,
         wait_subscribers: Duration::from_secs_f64(args.wait_subscribers),
+        restamp: args.restamp,
     })
 }
 
@@ -111,7 +118,8 @@ fn replay(ctx: Arc<NodeContext>, plan: Plan) -> Result<()> {
                     if !sleep_until(&ctx, due) {
                         return Ok(false);
                     }
-                    origin += out.publish(key, data)?;
+                    let restamped = plan.restamp.then(|| restamp(key, data)).flatten();
+                    origin += out.publish(key, restamped.as_deref().unwrap_or(data))?;
                     published += 1;
                     Ok(true)
                 },
@@ -136,6 +144,25 @@ fn replay(ctx: Arc<NodeContext>, plan: Plan) -> Result<()> {
         schedule.next_pass();
     }
     Ok(())
+}
+
+/// A cloud or joint state stamped now (`--restamp`); `None` for other kinds
+/// and for a message that does not decode (published as recorded, for its
+/// subscribers to refuse and count).
+fn restamp(key: &TopicKey, data: &[u8]) -> Option<Vec<u8>> {
+    match key.kind {
+        TopicKind::Cloud => {
+            let mut msg = CloudMessage::from_bytes(data).ok()?;
+            msg.stamp_ns = unix_ns();
+            msg.to_bytes().ok()
+        }
+        TopicKind::Joints => {
+            let mut msg = JointStateMessage::from_bytes(data).ok()?;
+            msg.stamp_ns = unix_ns();
+            msg.to_bytes().ok()
+        }
+        _ => None,
+    }
 }
 
 /// Waits until `due` or the stop flag; false if stopped.
