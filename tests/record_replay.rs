@@ -552,3 +552,54 @@ fn a_split_recording_keeps_each_file_under_its_size() {
     let text = String::from_utf8_lossy(&again.stderr);
     assert!(text.contains("split-000.mcap exists"), "{text}");
 }
+
+/// `--restamp` (a replay in place of a sensor): each cloud is stamped when
+/// it is published, its points as recorded; without it, the recorded stamp.
+#[test]
+fn a_restamped_replay_stamps_clouds_when_it_publishes_them() {
+    let (endpoint, session) = hub_on_free_port();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("restamp.mcap");
+    record_demo((&session, &endpoint), "rr-restamp", &file, 3);
+    let recorded_clouds: Vec<CloudMessage> = recorded(&file)["shroud/rr-restamp/cloud/s"]
+        .iter()
+        .map(|c| CloudMessage::from_bytes(c).unwrap())
+        .collect();
+    for restamp in [true, false] {
+        let ns = if restamp {
+            "rr-restamped"
+        } else {
+            "rr-as-recorded"
+        };
+        let heard = inbox(&session, format!("shroud/{ns}/cloud/s"));
+        let mut args = vec![
+            "replay",
+            s(&file),
+            "--topics",
+            "cloud/*",
+            "--wait-subscribers",
+            "30",
+        ];
+        if restamp {
+            args.push("--restamp");
+        }
+        let before = common::unix_ns();
+        let mut replay = start(&args, &wiring(&endpoint, ns));
+        assert!(replay.wait_exit(LONG).success(), "{}", replay.output());
+        let after = common::unix_ns();
+        for want in &recorded_clouds {
+            let sample = heard
+                .recv_timeout(Duration::from_secs(30))
+                .unwrap()
+                .expect("a replayed cloud");
+            let got = CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+            assert_eq!(got.points, want.points, "the points as recorded");
+            assert_eq!(got.sequence, want.sequence);
+            if restamp {
+                assert!((before..=after).contains(&got.stamp_ns), "stamped now");
+            } else {
+                assert_eq!(got.stamp_ns, want.stamp_ns, "stamped as recorded");
+            }
+        }
+    }
+}

@@ -11,6 +11,10 @@ use std::sync::Arc;
 use zenoh::bytes::ZBytes;
 use zenoh::Wait;
 
+/// How long [`NodeContext::wait_for_subscriber`] waits after the first
+/// subscriber is known, for the declarations that arrived with it.
+pub const DECLARATIONS_GRACE: std::time::Duration = std::time::Duration::from_millis(250);
+
 /// Options every node takes.
 #[derive(Debug, Clone, Args)]
 pub struct NodeCommon {
@@ -78,7 +82,8 @@ impl NodeContext {
     }
 
     /// Waits until `publisher` has a subscriber, at most `patience` (or
-    /// until the node stops); whether one is there. A zenoh peer drops what
+    /// until the node stops), then [`DECLARATIONS_GRACE`]; whether one is
+    /// there. A zenoh peer drops what
     /// it publishes before it has heard of any subscriber: a short run (a
     /// scanner's `--frames`, a replay) waits for its audience first.
     pub fn wait_for_subscriber(
@@ -94,6 +99,9 @@ impl NodeContext {
                 .map(|s| s.matching())
                 .unwrap_or(true);
             if matched {
+                // Peers learn of subscribers one declaration at a time: the
+                // others that came with the first get a moment to land.
+                std::thread::sleep(DECLARATIONS_GRACE);
                 return true;
             }
             if std::time::Instant::now() >= until || self.stopping() {
