@@ -223,6 +223,33 @@ mod tests {
         assert!(*seen.last().unwrap() > 30, "{seen:?}");
     }
 
+    proptest::proptest! {
+        /// Any cut and any changed bytes give records and an ending or a
+        /// named error, never a panic; a cut never yields more messages than
+        /// the whole.
+        #[test]
+        fn cut_or_changed_recordings_never_panic(
+            cut in 0usize..4000,
+            flips in proptest::collection::vec((0usize..4000, 1u8..=255), 0..6),
+            zstd in proptest::bool::ANY,
+        ) {
+            let compression = zstd.then_some(mcap::Compression::Zstd);
+            let mut bytes = recording(30, compression);
+            let whole = count(&bytes).unwrap().0;
+            let cut = cut.min(bytes.len());
+            if let Ok((n, _)) = count(&bytes[..cut]) {
+                proptest::prop_assert!(n <= whole);
+            }
+            let len = bytes.len();
+            for (at, x) in flips {
+                bytes[at % len] ^= x;
+            }
+            if let Err(e) = count(&bytes) {
+                proptest::prop_assert!(!e.to_string().trim().is_empty());
+            }
+        }
+    }
+
     #[test]
     fn empty_foreign_and_corrupt_bytes_are_named_errors() {
         assert!(matches!(count(b""), Err(ReadError::Empty)));

@@ -166,10 +166,12 @@ impl McapFile {
         let (channel_id, sequence) = match self.next_in(&view.topic) {
             Some(next) => next,
             None => {
-                let schema_id = match self.view_schemas.get(&view.schema.name) {
+                let s = view
+                    .schema()
+                    .with_context(|| format!("{}: no schema to record", view.topic))?;
+                let schema_id = match self.view_schemas.get(&s.name) {
                     Some(&id) => id,
                     None => {
-                        let s = &view.schema;
                         let id = self.add_schema(&s.name, &s.encoding, &s.data)?;
                         self.view_schemas.insert(s.name.clone(), id);
                         id

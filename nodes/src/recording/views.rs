@@ -27,21 +27,29 @@ use std::collections::BTreeMap;
 /// One Foxglove message ready for its channel.
 pub struct View {
     pub topic: String,
-    pub schema: Schema,
+    /// Its type's schema, built only when its channel is new (a JSON view's
+    /// schema is derived anew each time: not once per message).
+    schema_of: fn() -> Option<Schema>,
     pub message_encoding: String,
     pub data: Vec<u8>,
 }
 
-/// Encodes `message` with its type's schema for `topic`.
+impl View {
+    /// The schema of the view's type (`None` for a type without one).
+    pub fn schema(&self) -> Option<Schema> {
+        (self.schema_of)()
+    }
+}
+
+/// Encodes `message` for `topic`; its schema is its type's.
 fn view<T: Encode>(topic: String, message: &T) -> Result<View, String> {
-    let schema = schema_of::<T>().ok_or_else(|| format!("{topic}: no schema to record"))?;
     let mut data = Vec::with_capacity(message.encoded_len().unwrap_or(1024));
     message
         .encode(&mut data)
         .map_err(|e| format!("{topic}: cannot encode: {e}"))?;
     Ok(View {
         topic,
-        schema,
+        schema_of: schema_of::<T>,
         message_encoding: T::get_message_encoding(),
         data,
     })
@@ -252,7 +260,7 @@ mod tests {
         assert_eq!(v.paced(), 3);
         let views = v.of_message(&k, &cloud, 400_000_000).unwrap();
         assert_eq!(views[0].topic, "/shroud/cloud/a");
-        assert_eq!(views[0].schema.name, "foxglove.PointCloud");
+        assert_eq!(views[0].schema().unwrap().name, "foxglove.PointCloud");
         assert_eq!(views[0].message_encoding, "protobuf");
         // Another stream has its own pace; a cloud that does not decode is
         // an error naming it.
@@ -274,7 +282,7 @@ mod tests {
         let json =
             |view: &View| -> serde_json::Value { serde_json::from_slice(&view.data).unwrap() };
         assert_eq!(json(&shown[0])["verdict"], "clear");
-        assert_eq!(shown[0].schema.name, "shroud.VerdictView");
+        assert_eq!(shown[0].schema().unwrap().name, "shroud.VerdictView");
         // 0.3 s later the verdict still stands; 0.6 s later it has expired.
         let fresh = v.periodic(1_300_000_000).unwrap();
         assert_eq!(json(&fresh[0])["verdict"], "clear");
