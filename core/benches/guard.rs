@@ -78,6 +78,8 @@ fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
                 stamp_ns: 0,
                 sequence: 0,
                 pipeline_ns: 0,
+                published_ns: 0,
+                position_error: 0.0,
             }
         })
         .collect();

@@ -60,6 +60,8 @@ fn guards(points: &[[f32; 3]], grid: usize) -> Result<Vec<CollisionGuard>, Error
             stamp_ns: 0,
             sequence: 0,
             pipeline_ns: 0,
+            published_ns: 0,
+            position_error: 0.0,
         });
     }
     // Stop distance 0: "proven clear" means a clearance above zero.

@@ -263,6 +263,7 @@ mod guard {
             max_report: 1.0,
             refine_depth: 4,
             max_obstacle_speed: 0.0,
+            horizon: 0.0,
         };
         let mut rng = Pcg64::seed_from_u64(9);
         let mut ratios = Vec::new();
@@ -336,6 +337,7 @@ mod guard {
             max_report: 1.0,
             refine_depth: 4,
             max_obstacle_speed: 0.0,
+            horizon: 0.0,
         };
         let mut positive = 0;
         let mut rng = Pcg64::seed_from_u64(1);
@@ -526,7 +528,7 @@ mod guard {
             let pts = in_domain(&sur, &points_f64(&c.points));
             let mut rng = Pcg64::seed_from_u64(seed ^ 0x5EED);
             let (shapes, size) = random_shapes(&sur, &pts, 60, &mut rng);
-            let cfg = GuardConfig { stop_distance: 0.02 * size, max_report: 0.3 * size, refine_depth: depth, max_obstacle_speed: 0.0 };
+            let cfg = GuardConfig { stop_distance: 0.02 * size, max_report: 0.3 * size, refine_depth: depth, max_obstacle_speed: 0.0, horizon: 0.0 };
             let report = check_shapes(&env, &shapes, 1, &cfg).unwrap();
             assert_conservative(&shapes, &report, &pts, &format!("{kind:?}"));
         }
@@ -583,6 +585,7 @@ mod guard {
                 max_report: 0.3 * size,
                 refine_depth: 3,
                 max_obstacle_speed: 0.0,
+                horizon: 0.0,
             };
             let report = check_shapes(&env, &shapes, 1, &cfg).unwrap();
             let t = assert_conservative(&shapes, &report, &pts, &format!("{kind:?}"));
@@ -696,6 +699,8 @@ mod guard {
                         stamp_ns: 0,
                         sequence: seed,
                         pipeline_ns: 20_000_000 + 50_000_000 * k as u64,
+                        published_ns: 0,
+                        position_error: 0.0,
                     }
                 })
                 .collect();

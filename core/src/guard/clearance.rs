@@ -76,51 +76,31 @@ impl Envelope {
         Ok(self.clearance_unchecked(shape, config))
     }
 
-    /// Whether the shape's reach (`radius + max_report` around its core) leaves
-    /// the domain: occupied space there is not represented by the surrogate.
-    pub fn reach_leaves_domain(&self, shape: &Shape, config: &GuardConfig) -> bool {
-        let (u, v, reach) = self.footprint(shape, config);
-        let (du, dv) = self.uv_extent();
-        u[0] - reach < du[0] || u[1] + reach > du[1] || v[0] - reach < dv[0] || v[1] + reach > dv[1]
-    }
-
-    /// The shape's core uv bounds and the reach around them.
-    fn footprint(&self, shape: &Shape, config: &GuardConfig) -> ([f64; 2], [f64; 2], f64) {
-        let reach = shape.radius() + config.max_report;
-        match shape {
-            Shape::Sphere(s) => {
-                let c = self.to_frame(s.centre);
-                let (u, v) = PointProbe(c).uv_bounds();
-                (u, v, reach)
-            }
-            Shape::Capsule(c) => {
-                let (u, v) = SegmentProbe {
-                    a: self.to_frame(c.a),
-                    b: self.to_frame(c.b),
-                }
-                .uv_bounds();
-                (u, v, reach)
-            }
-        }
+    /// What every distance of `shape` to this surrogate is reduced by: the
+    /// surrogate's margin, the frame's distance from orthonormal (frame
+    /// distances below `max_report + r` scale by at most `1 +- 3
+    /// frame_error`), and the rounding of the shape's own coordinates.
+    pub(crate) fn slack(&self, shape: &Shape, config: &GuardConfig) -> f64 {
+        let r = shape.radius();
+        let skew = 4.0 * self.frame_error() * (config.max_report + r);
+        let size = match shape {
+            Shape::Sphere(s) => s.centre.abs().max_element(),
+            Shape::Capsule(c) => c.a.abs().max_element().max(c.b.abs().max_element()),
+        };
+        self.margin() + skew + 16.0 * f64::EPSILON * (size + r)
     }
 
     /// [`Self::shape_clearance`] for a shape and config already validated.
     pub(crate) fn clearance_unchecked(&self, shape: &Shape, config: &GuardConfig) -> f64 {
         let r = shape.radius();
-        // Frame distances that matter are below `max_report + r`; a frame a
-        // little off orthonormal scales them by at most `1 +- 3 frame_error`.
-        let skew = 4.0 * self.frame_error() * (config.max_report + r);
+        let slack = self.slack(shape, config);
         match shape {
             Shape::Sphere(s) => {
-                let slack =
-                    self.margin() + skew + 16.0 * f64::EPSILON * (s.centre.abs().max_element() + r);
                 let touches = || self.certainly_touches(s.centre, r);
                 let probe = PointProbe(self.to_frame(s.centre));
                 self.search(&probe, r, slack, config, touches)
             }
             Shape::Capsule(c) => {
-                let size = c.a.abs().max_element().max(c.b.abs().max_element());
-                let slack = self.margin() + skew + 16.0 * f64::EPSILON * (size + r);
                 let touches = || self.certainly_touches(c.a, r) || self.certainly_touches(c.b, r);
                 let probe = SegmentProbe {
                     a: self.to_frame(c.a),

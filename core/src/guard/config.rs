@@ -24,10 +24,20 @@ pub struct GuardConfig {
     /// `stop_distance` are therefore valid lower bounds but not the tightest.
     pub refine_depth: u32,
     /// Bound on the speed of anything in the scene (m/s, `>= 0`): the guard
-    /// reduces a surrogate's clearances by this times the surrogate's age, so
-    /// that a stop is decided against where an obstacle can be now.
+    /// reduces a surrogate's clearances by this times the surrogate's age
+    /// plus the [`Self::horizon`], so that a stop is decided against where an
+    /// obstacle can be until the arm stops moving on the verdict.
     pub max_obstacle_speed: f64,
+    /// How long after the decision (seconds, `>= 0`, at most
+    /// [`MAX_HORIZON`]) the arm may still move on a `clear`: a verdict
+    /// consumer's deadman deadline, counted from when it sent the joint
+    /// state, must not exceed it (the arm node refuses a longer `--deadline`).
+    pub horizon: f64,
 }
+
+/// The longest horizon an arm file may give: a verdict vouching for more
+/// than this is not a guard's but a planner's.
+pub const MAX_HORIZON: f64 = 1.0;
 
 impl Default for GuardConfig {
     fn default() -> Self {
@@ -36,6 +46,7 @@ impl Default for GuardConfig {
             max_report: 0.2,
             refine_depth: 3,
             max_obstacle_speed: 0.0,
+            horizon: 0.1,
         }
     }
 }
@@ -65,6 +76,12 @@ impl GuardConfig {
             return bad(format!(
                 "max_obstacle_speed must be finite and >= 0, got {}",
                 self.max_obstacle_speed
+            ));
+        }
+        if !(self.horizon.is_finite() && (0.0..=MAX_HORIZON).contains(&self.horizon)) {
+            return bad(format!(
+                "horizon must be in [0, {MAX_HORIZON}] seconds, got {}",
+                self.horizon
             ));
         }
         if self.refine_depth > MAX_REFINE_DEPTH {
@@ -97,6 +114,9 @@ mod tests {
         assert!(with(|c| c.refine_depth = MAX_REFINE_DEPTH + 1).is_err());
         assert!(with(|c| c.max_obstacle_speed = -1.0).is_err());
         assert!(with(|c| c.max_obstacle_speed = f64::INFINITY).is_err());
+        assert!(with(|c| c.horizon = -0.1).is_err());
+        assert!(with(|c| c.horizon = f64::NAN).is_err());
+        assert!(with(|c| c.horizon = MAX_HORIZON * 2.0).is_err());
         assert!(with(|c| c.stop_distance = 0.0).is_ok());
     }
 }

@@ -74,6 +74,25 @@ impl Deadman {
         }
     }
 
+    /// The deadline of a consumer publishing joint states every `period_s`:
+    /// `requested` (seconds) or three periods, never longer than the guard's
+    /// `horizon` (seconds), the time after a decision its allowance covers.
+    /// A default longer than the horizon is cut to it; a requested one is
+    /// refused.
+    pub fn deadline_for(
+        period_s: f64,
+        requested: Option<f64>,
+        horizon: f64,
+    ) -> Result<f64, crate::guard::GuardError> {
+        match requested {
+            Some(deadline) if deadline > horizon => {
+                Err(crate::guard::GuardError::DeadlineBeyondHorizon { deadline, horizon })
+            }
+            Some(deadline) => Ok(deadline),
+            None => Ok((3.0 * period_s).min(horizon)),
+        }
+    }
+
     pub fn deadline_ns(&self) -> u64 {
         self.deadline_ns
     }
@@ -152,6 +171,17 @@ mod tests {
     /// stamped `1000 + s`.
     fn deadman() -> Deadman {
         Deadman::new(60 * MS)
+    }
+
+    #[test]
+    fn deadlines_never_exceed_the_horizon() {
+        // 50 Hz: three periods, inside a 0.1 s horizon.
+        assert_eq!(Deadman::deadline_for(0.02, None, 0.1).unwrap(), 0.06);
+        // 10 Hz: three periods would be 0.3 s; cut to the horizon.
+        assert_eq!(Deadman::deadline_for(0.1, None, 0.1).unwrap(), 0.1);
+        assert_eq!(Deadman::deadline_for(0.1, Some(0.05), 0.1).unwrap(), 0.05);
+        let refused = Deadman::deadline_for(0.1, Some(0.5), 0.1).unwrap_err();
+        assert!(refused.to_string().contains("horizon"), "{refused}");
     }
 
     fn send(d: &mut Deadman, s: u64, at: u64) {

@@ -23,8 +23,8 @@
 //!   coefficients, so this is never looser than the coefficients' min and max.
 //!
 //! Everything outside the domain, and over trimmed triangles, holds no
-//! certified point and is not represented: the guard answers for the
-//! surrogate's domain only.
+//! certified point: the sensor did not see it, and the guard counts it as
+//! possibly occupied at every height (`unseen`).
 // Small fixed-size matrices and nets are clearer with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
@@ -261,6 +261,11 @@ impl Envelope {
     /// Deviation of the frame from orthonormal (see the field).
     pub(crate) fn frame_error(&self) -> f64 {
         self.frame_error
+    }
+
+    /// Kept triangle bits of cell `(h, g)`.
+    pub(crate) fn trim_bits(&self, h: usize, g: usize) -> u8 {
+        self.trim.cell_bits(h, g)
     }
 
     pub(crate) fn patches(&self, index: usize) -> &CellPatches {

@@ -59,6 +59,10 @@ pub enum GuardError {
         lower: f64,
         upper: f64,
     },
+    /// A verdict consumer asked to move longer on a verdict than the guard
+    /// accounts for.
+    #[error("a deadline of {deadline} s exceeds the guard's horizon of {horizon} s")]
+    DeadlineBeyondHorizon { deadline: f64, horizon: f64 },
     #[error("the time must be finite, got {0}")]
     BadTime(f64),
     #[error("guard config: {0}")]

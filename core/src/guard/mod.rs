@@ -24,9 +24,10 @@
 //! - [`VerdictWatch`]: what a display shows: the latest verdict while fresh,
 //!   `no-verdict` once the guard is silent.
 //!
-//! The guard answers for the surrogate's domain only: points outside it (or in
-//! trimmed-away triangles, which hold no points) are not represented.
-//! [`ShapeClearance::leaves_domain`] says when a shape's reach leaves it.
+//! A surrogate vouches only for what its sensor saw: space outside its domain
+//! and over trimmed-away triangles (which hold no points) counts as possibly
+//! occupied at every height ([`ShapeClearance::unseen`]); a shape whose bound
+//! is set by such space in every view is [`ShapeClearance::unobserved`].
 // `!(x > 0.0)` deliberately rejects NaN as well, which `x <= 0.0` would let through.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
@@ -45,6 +46,7 @@ mod resume;
 mod schema;
 mod shape;
 mod trajectory;
+mod unseen;
 mod urdf;
 mod verdict_watch;
 mod xml;
@@ -53,7 +55,7 @@ mod xml;
 mod tests;
 
 pub use arm::{ArmModel, Link};
-pub use config::{GuardConfig, MAX_REFINE_DEPTH};
+pub use config::{GuardConfig, MAX_HORIZON, MAX_REFINE_DEPTH};
 pub use deadman::{Deadman, Motion, VerdictUse};
 pub use decision::{
     CollisionGuard, Decision, GuardPolicy, SurrogateInput, SurrogateRecord, SurrogateRejected,

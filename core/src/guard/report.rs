@@ -8,17 +8,39 @@ use super::kinematics::ArmPose;
 use super::shape::WorldShape;
 use serde::{Deserialize, Serialize};
 
-/// One shape's result.
+/// One shape's result. Every distance is in `[0, max_report]`
+/// (`max_report` means "at least that").
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ShapeClearance {
     /// The link carrying the shape.
     pub link: usize,
-    /// Lower bound on the distance to the occupied region in the domain, in
-    /// `[0, max_report]` (`max_report` means "at least that").
+    /// The bound the verdict uses: a lower bound on the distance to anything
+    /// the view could hold, `min(occupied, unseen)` for one view (the
+    /// guard's combination of views and its policy may differ).
     pub clearance: f64,
-    /// The shape's reach (`radius + max_report`) leaves the surrogate's domain:
-    /// space there is not represented, so obstacles there are not seen.
-    pub leaves_domain: bool,
+    /// Lower bound on the distance to the occupied region the view saw.
+    pub occupied: f64,
+    /// Lower bound on the distance to space the view did not see: outside
+    /// its domain and over trimmed triangles, at every height.
+    pub unseen: f64,
+    /// The bound is set by unseen space (for combined views: in every view
+    /// that vouches for the shape): an obstacle there was not seen, only
+    /// not excluded.
+    pub unobserved: bool,
+}
+
+impl ShapeClearance {
+    /// One view's result for a shape: the bound is the nearer of what it saw
+    /// occupied and what it did not see.
+    pub fn of_view(link: usize, occupied: f64, unseen: f64) -> Self {
+        Self {
+            link,
+            clearance: occupied.min(unseen),
+            occupied,
+            unseen,
+            unobserved: unseen < occupied,
+        }
+    }
 }
 
 /// The verdict for one arm pose against one envelope.
@@ -38,16 +60,19 @@ pub struct GuardReport {
     /// Some clearance is below `stop_distance`, or is 0 (contact stops even
     /// with `stop_distance = 0`).
     pub stop: bool,
-    /// Some shape's reach leaves the domain (see [`ShapeClearance::leaves_domain`]).
-    pub leaves_domain: bool,
+    /// Every shape below the stop distance is there because of unseen space
+    /// alone (see [`ShapeClearance::unobserved`]): the verdict is `unobserved`
+    /// rather than `stop`. False when nothing is below it.
+    pub unobserved: bool,
 }
 
 impl GuardReport {
-    /// Combines the verdicts of the same shapes against envelopes of
-    /// *different* clouds (each holding part of the scene): per shape and link
-    /// the smaller clearance wins. Views of one cloud combine the other way,
-    /// by the larger bound (`CollisionGuard`). `None` when the two reports are
-    /// of different arms.
+    /// Combines the verdicts of the same shapes against two envelopes by the
+    /// smaller bound per shape (always sound, and the tightest choice when each
+    /// envelope holds a different part of the scene). The guard's views
+    /// combine the other way, by the larger bound, which is sound because each
+    /// view's bound counts the space it did not see (`CollisionGuard`). `None`
+    /// when the two reports are of different arms.
     pub fn merged(&self, other: &GuardReport, config: &GuardConfig) -> Option<GuardReport> {
         if self.shapes.len() != other.shapes.len() || self.links.len() != other.links.len() {
             return None;
@@ -56,11 +81,7 @@ impl GuardReport {
             .shapes
             .iter()
             .zip(&other.shapes)
-            .map(|(a, b)| ShapeClearance {
-                link: a.link,
-                clearance: a.clearance.min(b.clearance),
-                leaves_domain: a.leaves_domain || b.leaves_domain,
-            })
+            .map(|(a, b)| if b.clearance < a.clearance { *b } else { *a })
             .collect();
         Some(summarise(shapes, self.links.len(), config))
     }
@@ -100,10 +121,12 @@ pub fn check_shapes(
     }
     let results = shapes
         .iter()
-        .map(|s| ShapeClearance {
-            link: s.link,
-            clearance: envelope.clearance_unchecked(&s.shape, config),
-            leaves_domain: envelope.reach_leaves_domain(&s.shape, config),
+        .map(|s| {
+            ShapeClearance::of_view(
+                s.link,
+                envelope.clearance_unchecked(&s.shape, config),
+                envelope.unseen_clearance(&s.shape, config),
+            )
         })
         .collect();
     Ok(summarise(results, link_count, config))
@@ -125,11 +148,13 @@ pub(crate) fn summarise(
         }
     }
     let min_clearance = closest.map_or(config.max_report, |(_, c)| c);
+    let below = |s: &&ShapeClearance| s.clearance < config.stop_distance || s.clearance <= 0.0;
+    let stop = min_clearance < config.stop_distance || min_clearance <= 0.0;
     GuardReport {
         closest_link: closest.map(|(i, _)| shapes[i].link),
         closest_shape: closest.map(|(i, _)| i),
-        stop: min_clearance < config.stop_distance || min_clearance <= 0.0,
-        leaves_domain: shapes.iter().any(|s| s.leaves_domain),
+        stop,
+        unobserved: stop && shapes.iter().filter(below).all(|s| s.unobserved),
         min_clearance,
         links,
         shapes,

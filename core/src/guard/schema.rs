@@ -33,7 +33,8 @@
 //! stop_distance = 0.05
 //! max_report = 0.2
 //! refine_depth = 3
-//! max_obstacle_speed = 0.0            # m/s; clearances shrink by this times the surrogate's age
+//! max_obstacle_speed = 0.0            # m/s; clearances shrink by this times (age + horizon)
+//! horizon = 0.1                       # s; the arm moves at most this long on a verdict
 //! ```
 //!
 //! A link's shapes are its spheres, then its capsules, in file order. Unknown keys

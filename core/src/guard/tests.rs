@@ -79,6 +79,7 @@ fn config(stop: f64, max_report: f64, depth: u32) -> GuardConfig {
         max_report,
         refine_depth: depth,
         max_obstacle_speed: 0.0,
+        horizon: 0.0,
     }
 }
 
@@ -359,7 +360,7 @@ fn report_summarises_links_and_stop() {
         (report.closest_link, report.closest_shape),
         (Some(2), Some(2))
     );
-    assert!(report.stop && !report.leaves_domain);
+    assert!(report.stop && !report.unobserved);
     let clear = check_shapes(&env, &shapes[..2], 3, &cfg).unwrap();
     assert!(!clear.stop);
     let merged = clear
@@ -374,6 +375,13 @@ fn report_summarises_links_and_stop() {
         (empty.min_clearance, empty.closest_link, empty.stop),
         (1.0, None, false)
     );
+    // High above the middle: nearer the domain's border (2 m away) than the
+    // surface, so the bound is set by the space the view did not see.
     let edge = check_shapes(&env, &[at(0, 5.0)], 1, &config(0.1, 3.0, 1)).unwrap();
-    assert!(edge.leaves_domain);
+    let shape = edge.shapes[0];
+    assert!(
+        shape.unobserved && shape.unseen < shape.occupied,
+        "{shape:?}"
+    );
+    assert!(near(edge.min_clearance, shape.unseen) && !edge.stop);
 }

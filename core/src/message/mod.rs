@@ -34,7 +34,10 @@ pub use collision::{CollisionMessage, GuardVerdict, LinkClearance};
 pub use describe::describe;
 pub use error::MessageError;
 pub use joints::JointStateMessage;
-pub use skew::{check_stamp_skew, max_skew_ns_from_secs, StampSkew, DEFAULT_MAX_SKEW_NS};
+pub use skew::{
+    check_stamp_skew, counted_transit, max_skew_ns_from_secs, ClockAhead, StampSkew,
+    DEFAULT_MAX_CLOCK_OFFSET_NS, DEFAULT_MAX_SKEW_NS,
+};
 #[cfg(test)]
 pub(crate) use smooth::sample_smooth_message;
 pub use smooth::{SmoothFitReport, SmoothPatchesMessage};

@@ -40,6 +40,41 @@ pub fn check_stamp_skew(stamp_ns: u64, wall_ns: u64, max_skew_ns: u64) -> Result
     Ok(())
 }
 
+/// A message that seems to have been published in the receiver's future by
+/// more than the clocks may disagree.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("published {ahead_ns} ns in the future of this node's clock (allowed clock offset {allowed_ns} ns)")]
+pub struct ClockAhead {
+    pub ahead_ns: u64,
+    pub allowed_ns: u64,
+}
+
+/// Default bound on how far two nodes' wall clocks disagree: one host, one
+/// clock (a millisecond covers a clock slewed by NTP while a message is in
+/// flight). Across hosts, the synchronisation's own bound (PTP, NTP).
+pub const DEFAULT_MAX_CLOCK_OFFSET_NS: u64 = 1_000_000;
+
+/// The transit of a message published at `published_ns` on the sender's wall
+/// clock and received at `received_ns` on the receiver's, as an upper bound:
+/// the measured time (never below 0) plus `max_offset_ns`, the bound on how
+/// far the two clocks disagree. Whatever held the message up (the network, a
+/// queue, a receiver that was frozen before its callback ran) is in it.
+pub fn counted_transit(
+    published_ns: u64,
+    received_ns: u64,
+    max_offset_ns: u64,
+) -> Result<u64, ClockAhead> {
+    if published_ns > received_ns.saturating_add(max_offset_ns) {
+        return Err(ClockAhead {
+            ahead_ns: published_ns - received_ns,
+            allowed_ns: max_offset_ns,
+        });
+    }
+    Ok(received_ns
+        .saturating_sub(published_ns)
+        .saturating_add(max_offset_ns))
+}
+
 /// Seconds on a command line (`inf` for no check) as nanoseconds.
 pub fn max_skew_ns_from_secs(seconds: f64) -> Option<u64> {
     if seconds.is_nan() || seconds <= 0.0 {
@@ -55,6 +90,21 @@ pub fn max_skew_ns_from_secs(seconds: f64) -> Option<u64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn transit_counts_the_offset_and_refuses_the_future() {
+        assert_eq!(counted_transit(100, 350, 10), Ok(260));
+        // Slightly ahead, within the offset: counted as 0 plus the offset.
+        assert_eq!(counted_transit(105, 100, 10), Ok(10));
+        assert_eq!(
+            counted_transit(200, 100, 10),
+            Err(ClockAhead {
+                ahead_ns: 100,
+                allowed_ns: 10
+            })
+        );
+        assert_eq!(counted_transit(0, u64::MAX, u64::MAX), Ok(u64::MAX));
+    }
 
     #[test]
     fn skew_is_symmetric_and_bounded() {

@@ -49,6 +49,12 @@ pub struct SurrogateMessage {
     pub stats: FitStats,
     /// Wall time of the fit, nanoseconds.
     pub fit_ns: u64,
+    /// Bound on how far any point of the source cloud may lie from where its
+    /// sensor placed it (metres, finite, `>= 0`; the cloud's own bound, 0 when
+    /// the sensor states none): the certificate is about the points as
+    /// placed, so a consumer shrinks every clearance by this.
+    #[serde(default)]
+    pub position_error_m: f64,
 }
 
 impl SurrogateMessage {
@@ -84,6 +90,7 @@ impl SurrogateMessage {
                 .collect(),
             stats: s.stats.clone(),
             fit_ns,
+            position_error_m: 0.0,
         }
     }
 
@@ -96,6 +103,12 @@ impl SurrogateMessage {
     pub fn from_bytes(bytes: &[u8]) -> Result<(Self, Surrogate), MessageError> {
         let msg: SurrogateMessage = decode(bytes)?;
         check_version(msg.version)?;
+        if !(msg.position_error_m.is_finite() && msg.position_error_m >= 0.0) {
+            return Err(MessageError::Invalid {
+                field: "position_error_m",
+                reason: format!("{} is not a finite distance >= 0", msg.position_error_m),
+            });
+        }
         let surrogate = msg.to_surrogate()?;
         Ok((msg, surrogate))
     }
@@ -217,6 +230,17 @@ mod tests {
         let mut msg = good.clone();
         msg.trim.pop();
         assert!(SurrogateMessage::from_bytes(&msg.to_bytes().unwrap()).is_err());
+        for bad in [f64::NAN, -0.1, f64::INFINITY] {
+            let mut msg = good.clone();
+            msg.position_error_m = bad;
+            assert!(matches!(
+                SurrogateMessage::from_bytes(&msg.to_bytes().unwrap()),
+                Err(MessageError::Invalid {
+                    field: "position_error_m",
+                    ..
+                })
+            ));
+        }
         let bytes = good.to_bytes().unwrap();
         for len in (0..bytes.len()).step_by(7) {
             assert!(SurrogateMessage::from_bytes(&bytes[..len]).is_err());

@@ -30,7 +30,9 @@ pub struct ArmArgs {
     #[arg(long, default_value_t = 50.0)]
     pub rate: f64,
     /// The deadman's deadline in seconds: halt when no clear verdict for a
-    /// joint state sent within this long has arrived (default: three periods).
+    /// joint state sent within this long has arrived (default: three periods,
+    /// at most the arm file's `[guard] horizon`; a longer one is refused, since
+    /// the guard's allowance covers only the horizon).
     #[arg(long)]
     pub deadline: Option<f64>,
     /// After a halt, resume once motion has been allowed for this long
@@ -59,6 +61,8 @@ pub fn run(args: ArmArgs) -> Result<()> {
             "--deadline must be in (0, 10] seconds"
         );
     }
+    Deadman::deadline_for(1.0 / args.rate, args.deadline, file.guard.horizon)
+        .with_context(|| format!("--deadline against {}", args.arm_file.display()))?;
     let trajectory = file.trajectory.clone().with_context(|| {
         format!(
             "arm file {} has no [trajectory] to follow",
@@ -93,7 +97,7 @@ fn serve(
         .unwrap_or_else(|| file.arm.name().to_string());
     let collision_key = ctx.key(TopicKind::Collision, &arm_name)?;
     let period = Duration::from_secs_f64(1.0 / args.rate);
-    let deadline = args.deadline.unwrap_or(3.0 / args.rate);
+    let deadline = Deadman::deadline_for(1.0 / args.rate, args.deadline, file.guard.horizon)?;
     let verdicts = Arc::new(Mutex::new(Verdicts {
         deadman: Deadman::new((deadline * 1e9) as u64),
         last_reason: String::new(),

@@ -4,10 +4,10 @@
 
 use super::runtime::{run_node, NodeCommon, NodeContext};
 use crate::args::SurrogateShapeArgs;
-use crate::transport::{unix_ns, Mailbox};
+use crate::transport::{sample_published_ns, unix_ns, Mailbox, NO_PUBLISH_STAMP};
 use anyhow::Result;
 use clap::Args;
-use shroud_core::message::{CloudView, MessageError, SurrogateMessage, TopicKind};
+use shroud_core::message::{counted_transit, CloudView, MessageError, SurrogateMessage, TopicKind};
 use shroud_core::metrics::{Percentiles, SequenceGaps};
 use shroud_core::surrogate::{FitError, Sides, SurrogateFitter};
 use std::sync::Arc;
@@ -33,20 +33,51 @@ pub struct FitNodeArgs {
     /// Clouds waiting for the fitter at most; older ones are dropped and counted.
     #[arg(long, default_value_t = 1)]
     pub queue: usize,
+    /// Bound (seconds) on how far the cloud publishers' wall clocks and this
+    /// node's may disagree: added to every cloud's measured transit; a cloud
+    /// that seems to come from further in the future is dropped
+    /// (`clock_offset`). One host: the default; across hosts: the clock
+    /// synchronisation's bound.
+    #[arg(long, default_value_t = 0.001)]
+    pub max_clock_offset: f64,
 }
 
-/// A received cloud payload with its arrival time.
+/// A received cloud payload with its arrival time and its publication's.
 struct Arrival {
     payload: ZBytes,
     key: String,
+    /// The sample's zenoh timestamp (the publisher's wall clock).
+    published_ns: Option<u64>,
     received_ns: u64,
     received: Instant,
+}
+
+/// The cloud's transit to this node as counted (see [`counted_transit`]);
+/// `None`, counted and logged, when it cannot be known.
+fn cloud_transit(ctx: &NodeContext, arrival: &Arrival, max_offset_ns: u64) -> Option<u64> {
+    let Some(published_ns) = arrival.published_ns else {
+        ctx.metrics.add(NO_PUBLISH_STAMP, 1);
+        tracing::warn!(key = %arrival.key, "cloud without a zenoh timestamp: its transit is unknown");
+        return None;
+    };
+    match counted_transit(published_ns, arrival.received_ns, max_offset_ns) {
+        Ok(transit) => Some(transit),
+        Err(e) => {
+            ctx.metrics.add("clock_offset", 1);
+            tracing::warn!(key = %arrival.key, "cloud dropped: {e}");
+            None
+        }
+    }
 }
 
 pub fn run(args: FitNodeArgs) -> Result<()> {
     let options = args.shape.options(args.side)?;
     let fitter = SurrogateFitter::new(options)?;
     anyhow::ensure!((1..=64).contains(&args.queue), "--queue must be 1 to 64");
+    anyhow::ensure!(
+        args.max_clock_offset.is_finite() && (0.0..=10.0).contains(&args.max_clock_offset),
+        "--max-clock-offset must be in [0, 10] seconds"
+    );
     let common = args.common.clone();
     run_node(&common, "fit", move |ctx| serve(ctx, args, fitter))
 }
@@ -67,6 +98,7 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
             inbox.push(Arrival {
                 payload: sample.payload().clone(),
                 key: sample.key_expr().to_string(),
+                published_ns: sample_published_ns(&sample),
                 received_ns: unix_ns(),
                 received: Instant::now(),
             });
@@ -78,6 +110,7 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
     let mut latency_ms = Percentiles::new(256);
     let mut copied = Vec::new();
     let mut gaps = SequenceGaps::default();
+    let max_offset_ns = (args.max_clock_offset * 1e9) as u64;
     while !ctx.stopping() {
         ctx.metrics
             .set_counter("dropped_backlog", mailbox.dropped());
@@ -131,10 +164,17 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
             &msg.source,
             fit_ns,
         );
-        // The cloud's age so far, on the upstream nodes' clocks, plus its time
+        // The cloud's age so far, on the upstream nodes' clocks, its transit
+        // to this node (wall clocks, within the offset bound), and its time
         // here on ours (queue, decode, fit): what the guard ages it by.
+        let Some(transit_ns) = cloud_transit(&ctx, &arrival, max_offset_ns) else {
+            continue;
+        };
         let here_ns = arrival.received.elapsed().as_nanos() as u64;
-        out.pipeline_ns = msg.pipeline_ns.saturating_add(here_ns);
+        out.pipeline_ns = msg
+            .pipeline_ns
+            .saturating_add(transit_ns)
+            .saturating_add(here_ns);
         let publish_start = Instant::now();
         match out.to_bytes() {
             Ok(bytes) => match publisher.put(bytes).wait() {

@@ -5,7 +5,7 @@
 
 use super::arm_file::{joint_names, read_arm_file};
 use super::runtime::{run_node, NodeCommon, NodeContext};
-use crate::transport::{monotonic_ns, unix_ns};
+use crate::transport::{monotonic_ns, sample_published_ns, unix_ns, NO_PUBLISH_STAMP};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use shroud_core::guard::{
@@ -46,12 +46,21 @@ pub struct GuardArgs {
     /// e.g. for replays of old logs).
     #[arg(long, default_value_t = 5.0)]
     pub max_skew: f64,
+    /// Bound (seconds) on how far the fit nodes' wall clocks and this node's
+    /// may disagree: added to every surrogate's measured transit, and a
+    /// surrogate that seems to come from further in the future is refused
+    /// (`clock_offset`). One host: the default; across hosts: the clock
+    /// synchronisation's bound.
+    #[arg(long, default_value_t = 0.001)]
+    pub max_clock_offset: f64,
     /// Bound on obstacle speed (m/s): clearances shrink by this times the
     /// surrogate's age (default: the arm file's [guard] table, else 0).
     #[arg(long)]
     pub max_obstacle_speed: Option<f64>,
-    /// A link reaching outside every fresh surrogate's domain: `stop`
-    /// (verdict `unobserved`) or `ignore` (judge the observed space only).
+    /// Space no fresh view saw (outside its domain, over trimmed cells):
+    /// `stop` counts it as occupied (verdict `unobserved` when a link comes
+    /// within the stop distance of it); `ignore` judges by the occupied space
+    /// seen alone, as if the sensors had seen everything.
     #[arg(long, value_enum, default_value_t = Unobserved::Stop)]
     pub unobserved: Unobserved,
 }
@@ -89,11 +98,16 @@ fn policy(args: &GuardArgs) -> Result<GuardPolicy> {
         args.max_age.is_finite() && args.max_age > 0.0,
         "--max-age must be positive"
     );
+    anyhow::ensure!(
+        args.max_clock_offset.is_finite() && (0.0..=10.0).contains(&args.max_clock_offset),
+        "--max-clock-offset must be in [0, 10] seconds"
+    );
     let max_skew_ns = max_skew_ns_from_secs(args.max_skew)
         .ok_or_else(|| anyhow::anyhow!("--max-skew must be positive (inf: no check)"))?;
     Ok(GuardPolicy {
         max_age_ns: (args.max_age * 1e9) as u64,
         max_skew_ns,
+        max_clock_offset_ns: (args.max_clock_offset * 1e9) as u64,
         unobserved: match args.unobserved {
             Unobserved::Stop => UnobservedPolicy::Stop,
             Unobserved::Ignore => UnobservedPolicy::Ignore,
@@ -150,8 +164,8 @@ fn lock(guard: &Mutex<CollisionGuard>) -> MutexGuard<'_, CollisionGuard> {
 }
 
 /// Feeds one view's surrogates into the guard, stamped with their arrival on
-/// this node's monotonic clock (before the envelope is built, so that the
-/// building counts toward their age).
+/// this node's clocks (before the envelope is built, so that the building
+/// counts toward their age) and their publication's zenoh timestamp.
 fn subscribe_view(
     ctx: &Arc<NodeContext>,
     guard: &Arc<Mutex<CollisionGuard>>,
@@ -163,8 +177,13 @@ fn subscribe_view(
     ctx.session
         .declare_subscriber(&key)
         .callback(move |sample| {
-            let arrived_ns = monotonic_ns();
+            let (arrived_ns, arrived_wall_ns) = (monotonic_ns(), unix_ns());
             let key = sample.key_expr().to_string();
+            let Some(published_ns) = sample_published_ns(&sample) else {
+                lock(&guard).invalidate(view);
+                c.metrics.add(NO_PUBLISH_STAMP, 1);
+                return tracing::warn!(%key, "surrogate without a zenoh timestamp: its transit is unknown");
+            };
             let built = SurrogateMessage::from_bytes(&sample.payload().to_bytes())
                 .map_err(anyhow::Error::from)
                 .and_then(|(msg, s)| Ok((msg, Envelope::new(&s)?)));
@@ -182,9 +201,11 @@ fn subscribe_view(
                 stamp_ns: msg.source_stamp_ns,
                 sequence: msg.source_sequence,
                 pipeline_ns: msg.pipeline_ns,
+                published_ns,
+                position_error: msg.position_error_m,
             };
             // Not under the lock: a log line may block on a slow stderr.
-            let accepted = lock(&guard).accept(view, input, arrived_ns, unix_ns());
+            let accepted = lock(&guard).accept(view, input, arrived_ns, arrived_wall_ns);
             match accepted {
                 Ok(()) => c.metrics.add("surrogates", 1),
                 Err(refused) => {
@@ -233,11 +254,19 @@ impl Checker {
 
     fn decide(&self, joints: &JointStateMessage) -> Result<Decision> {
         anyhow::ensure!(
+            joints.arm == self.arm_name,
+            "joint state of arm {:?}, not {:?}",
+            joints.arm,
+            self.arm_name
+        );
+        anyhow::ensure!(
             joints.names == self.names,
             "joint names {:?} are not the arm's {:?}",
             joints.names,
             self.names
         );
+        // A pose outside the joints' limits is a glitch, not a pose to judge.
+        self.file.arm.check_limits(&joints.positions)?;
         let pose = self.file.arm.forward(&joints.positions)?;
         Ok(lock(&self.guard).decide(&pose.shapes, monotonic_ns())?)
     }

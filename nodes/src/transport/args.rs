@@ -85,6 +85,14 @@ impl ZenohArgs {
             // A peer keeps retrying its endpoints instead of failing at start, so
             // nodes may start in any order.
             ("connect/exit_on_failure", "false".to_string()),
+            // Every sample carries its publication time (the session's hybrid
+            // logical clock, i.e. its wall clock): the receivers count the
+            // transit, and whatever held a sample up before their callbacks
+            // ran, toward the data's age.
+            (
+                "timestamping/enabled",
+                r#"{ router: true, peer: true, client: true }"#.to_string(),
+            ),
         ];
         for (key, value) in settings {
             config

@@ -17,3 +17,19 @@ pub fn monotonic_ns() -> u64 {
     static START: OnceLock<Instant> = OnceLock::new();
     START.get_or_init(Instant::now).elapsed().as_nanos() as u64
 }
+
+/// The status counter of samples that carry no zenoh timestamp, whose transit
+/// therefore cannot be counted.
+pub const NO_PUBLISH_STAMP: &str = "no_publish_stamp";
+
+/// When a sample was published, on its publisher's wall clock (nanoseconds
+/// since the Unix epoch): its zenoh timestamp. Every shroud session stamps
+/// what it publishes (timestamping is on in [`ZenohArgs::config`]); a sample
+/// from a session that does not is stamped by the first shroud session it
+/// reaches, so its time before that is not counted.
+///
+/// [`ZenohArgs::config`]: super::ZenohArgs::config
+pub fn sample_published_ns(sample: &zenoh::sample::Sample) -> Option<u64> {
+    let time = sample.timestamp()?.get_time().to_duration();
+    u64::try_from(time.as_nanos()).ok()
+}

@@ -4,7 +4,9 @@ use super::combine::{combine, ViewReport};
 use super::policy::{GuardPolicy, UnobservedPolicy};
 use super::view::{check_skew, HeldSurrogate, SurrogateInput, SurrogateRejected};
 use crate::guard::{check_shapes, GuardConfig, GuardError, GuardReport, WorldShape};
-use crate::message::{CollisionMessage, GuardVerdict, LinkClearance, SCHEMA_VERSION};
+use crate::message::{
+    counted_transit, CollisionMessage, GuardVerdict, LinkClearance, SCHEMA_VERSION,
+};
 
 /// The guard's state: per view its latest accepted surrogate.
 #[derive(Debug, Clone)]
@@ -23,7 +25,8 @@ pub struct Decision {
     /// Why, for a person (empty when clear).
     pub reason: String,
     /// Combined clearances (after motion allowances; a shape's
-    /// `leaves_domain` means no fresh view covers it); `None` without a fresh view.
+    /// `unobserved` means its bound is set by unseen space in every fresh
+    /// view); `None` without a fresh view.
     pub report: Option<GuardReport>,
     /// Fresh views used.
     pub views: usize,
@@ -58,8 +61,9 @@ impl CollisionGuard {
     ///
     /// Clearances are capped at `max_report` before the motion allowance is
     /// subtracted, so `max_report` is raised to at least `stop_distance +
-    /// max_obstacle_speed * max_age`: otherwise any surrogate older than
-    /// `(max_report - stop_distance) / speed` would stop the arm in empty space.
+    /// max_obstacle_speed * (max_age + horizon)`: otherwise any surrogate
+    /// older than `(max_report - stop_distance) / speed - horizon` would stop
+    /// the arm in empty space.
     pub fn new(
         views: Vec<String>,
         links: Vec<String>,
@@ -68,7 +72,7 @@ impl CollisionGuard {
     ) -> Result<Self, GuardError> {
         policy.validate()?;
         config.validate()?;
-        let reach = config.max_obstacle_speed * policy.max_age_ns as f64 * 1e-9;
+        let reach = config.max_obstacle_speed * (policy.max_age_ns as f64 * 1e-9 + config.horizon);
         config.max_report = config.max_report.max(config.stop_distance + reach);
         if views.is_empty() {
             return Err(GuardError::BadConfig(
@@ -115,9 +119,11 @@ impl CollisionGuard {
     }
 
     /// Takes a surrogate of `view` that reached the guard at `arrived_ns`
-    /// (monotonic), unless its source stamp is too far from `wall_ns` (the
-    /// guard's wall clock): then the view is emptied, since its pipeline's
-    /// timing cannot be trusted.
+    /// (monotonic) and `wall_ns` (the guard's wall clock, read together),
+    /// unless its timing cannot be trusted (its source stamp too far from
+    /// `wall_ns`, or its publication further in the future than the clock
+    /// offset bound) or its position error is not a distance: then the view
+    /// is emptied, since newer data exists that cannot be used.
     pub fn accept(
         &mut self,
         view: usize,
@@ -129,13 +135,27 @@ impl CollisionGuard {
             .held
             .get_mut(view)
             .ok_or(SurrogateRejected::UnknownView(view))?;
-        if let Err(refused) = check_skew(input.stamp_ns, wall_ns, &self.policy) {
-            // Timing that cannot be trusted: the view vouches for nothing.
-            *slot = None;
-            return Err(refused);
+        let timed = check_skew(input.stamp_ns, wall_ns, &self.policy).and_then(|()| {
+            if !(input.position_error.is_finite() && input.position_error >= 0.0) {
+                return Err(SurrogateRejected::BadPositionError(input.position_error));
+            }
+            counted_transit(input.published_ns, wall_ns, self.policy.max_clock_offset_ns)
+                .map_err(SurrogateRejected::ClockOffset)
+        });
+        match timed {
+            Ok(transit_ns) => {
+                *slot = Some(HeldSurrogate {
+                    input,
+                    arrived_ns,
+                    transit_ns,
+                });
+                Ok(())
+            }
+            Err(refused) => {
+                *slot = None;
+                Err(refused)
+            }
         }
-        *slot = Some(HeldSurrogate { input, arrived_ns });
-        Ok(())
     }
 
     /// The verdict for world `shapes` (carried by links `0..links`) at `now_ns`.
@@ -157,11 +177,17 @@ impl CollisionGuard {
         let mut reports = Vec::with_capacity(fresh.len());
         for h in &fresh {
             let report = check_shapes(&h.input.envelope, shapes, self.links.len(), &self.config)?;
-            // How far an obstacle may have moved since the cloud was taken.
-            let allowance = self.config.max_obstacle_speed * h.age_ns(now_ns) as f64 * 1e-9;
-            reports.push(ViewReport { report, allowance });
+            reports.push(ViewReport {
+                report,
+                allowance: self.allowance(h, now_ns),
+            });
         }
-        let report = combine(&reports, self.links.len(), &self.config);
+        let report = combine(
+            &reports,
+            self.links.len(),
+            &self.config,
+            self.policy.unobserved,
+        );
         let oldest = fresh
             .iter()
             .max_by_key(|h| h.age_ns(now_ns))
@@ -176,12 +202,31 @@ impl CollisionGuard {
         })
     }
 
+    /// How far an obstacle may have moved from where a view's cloud saw it,
+    /// until the arm stops moving on this verdict: the speed bound times the
+    /// data's age and the horizon, plus how far the sensor may have misplaced
+    /// it.
+    fn allowance(&self, h: &HeldSurrogate, now_ns: u64) -> f64 {
+        let seconds = h.age_ns(now_ns) as f64 * 1e-9 + self.config.horizon;
+        self.config.max_obstacle_speed * seconds + h.input.position_error
+    }
+
     fn judge(&self, report: &GuardReport) -> (GuardVerdict, String) {
         let link = |i: Option<usize>| {
             i.and_then(|i| self.links.get(i))
                 .map_or("?", String::as_str)
                 .to_owned()
         };
+        let counts_unseen = self.policy.unobserved == UnobservedPolicy::Stop;
+        if report.stop && report.unobserved && counts_unseen {
+            let reason = format!(
+                "link {} is {:.3} m from space no fresh view saw (stop distance {:.3} m)",
+                link(report.closest_link),
+                report.min_clearance,
+                self.config.stop_distance
+            );
+            return (GuardVerdict::Unobserved, reason);
+        }
         if report.stop {
             let reason = format!(
                 "link {} at {:.3} m, within the stop distance {:.3} m",
@@ -190,18 +235,6 @@ impl CollisionGuard {
                 self.config.stop_distance
             );
             return (GuardVerdict::Stop, reason);
-        }
-        if report.leaves_domain && self.policy.unobserved == UnobservedPolicy::Stop {
-            let first = report
-                .shapes
-                .iter()
-                .find(|s| s.leaves_domain)
-                .map(|s| s.link);
-            let reason = format!(
-                "link {} reaches space no fresh surrogate covers",
-                link(first)
-            );
-            return (GuardVerdict::Unobserved, reason);
         }
         (GuardVerdict::Clear, String::new())
     }
@@ -252,7 +285,7 @@ impl CollisionGuard {
                     .cloned()
                     .unwrap_or_default(),
                 self.link_clearances(r),
-                r.leaves_domain,
+                r.shapes.iter().any(|s| s.unobserved),
             ),
             // Without a usable surrogate nothing is known to be clear.
             None => (0.0, String::new(), Vec::new(), false),
@@ -285,7 +318,7 @@ impl CollisionGuard {
             .map(|(i, name)| LinkClearance {
                 link: name.clone(),
                 clearance: r.links.get(i).copied().unwrap_or(0.0),
-                unobserved: r.shapes.iter().any(|s| s.link == i && s.leaves_domain),
+                unobserved: r.shapes.iter().any(|s| s.link == i && s.unobserved),
             })
             .collect()
     }

@@ -4,8 +4,23 @@
 //!
 //! [`CollisionGuard`] holds the latest surrogate of each view. Time is an
 //! argument: nanoseconds on the caller's monotonic clock for ages, and the
-//! caller's wall clock only to spot a device stamp that is far off
-//! ([`GuardPolicy::max_skew_ns`]). No decision rests on a device's stamp.
+//! caller's wall clock for the transit from the fit node (against the
+//! publication stamp, within [`GuardPolicy::max_clock_offset_ns`]) and to spot
+//! a device stamp that is far off ([`GuardPolicy::max_skew_ns`]). No decision
+//! rests on a device's stamp.
+//!
+//! What the decision assumes (and what remains for the deployment to ensure):
+//! - a view saw the space above (along its direction) every kept triangle of
+//!   its domain: its cloud's sensor looked along the view's direction, from
+//!   outside the scene, and nothing it did not measure hides inside a kept
+//!   triangle below its line of sight (an occluded pocket smaller than a
+//!   triangle, a thin object between rays);
+//! - obstacles move no faster than [`GuardConfig::max_obstacle_speed`];
+//! - the consumer moves on a verdict no longer than
+//!   [`GuardConfig::horizon`] after sending the joint state it answers (its
+//!   deadman's deadline), and the arm's own motion in that time is covered by
+//!   its stop distance;
+//! - the hosts' wall clocks agree within the policy's clock offset bound.
 
 mod combine;
 mod decider;

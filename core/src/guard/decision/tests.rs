@@ -54,16 +54,28 @@ fn view_on_grid(
         ..FitOptions::default()
     };
     let surrogate = fit_surrogate(points, &options).unwrap();
+    input_of(&surrogate, pipeline_ns)
+}
+
+fn input_of(surrogate: &crate::surrogate::Surrogate, pipeline_ns: u64) -> SurrogateInput {
     SurrogateInput {
-        envelope: Envelope::new(&surrogate).unwrap(),
+        envelope: Envelope::new(surrogate).unwrap(),
         stamp_ns: WALL,
         sequence: 1,
         pipeline_ns,
+        published_ns: WALL,
+        position_error: 0.0,
     }
 }
 
 const TOP: [f64; 3] = [0.0, 0.0, -1.0];
-const SIDE: [f64; 3] = [0.0, -1.0, 0.0];
+/// Looking at the wall's face: every column of this view holds wall points.
+const SIDE: [f64; 3] = [-1.0, 0.0, 0.0];
+/// Along the wall: the columns between the floor and the wall's top hold no
+/// point, so this view saw nothing there.
+const ALONG: [f64; 3] = [0.0, -1.0, 0.0];
+/// The clock offset every transit is counted with by default.
+const OFFSET: u64 = crate::message::DEFAULT_MAX_CLOCK_OFFSET_NS;
 
 fn config() -> GuardConfig {
     GuardConfig {
@@ -71,6 +83,7 @@ fn config() -> GuardConfig {
         max_report: 0.2,
         refine_depth: 3,
         max_obstacle_speed: 0.0,
+        horizon: 0.0,
     }
 }
 
@@ -112,11 +125,17 @@ fn no_surrogate_then_clear_then_stale_by_arrival_and_pipeline_delay() {
     // reached shroud.
     g.accept(0, view(&points, TOP, 100 * MS), 10 * S, WALL)
         .unwrap();
-    let d = g.decide(&above_floor(), 10 * S + 900 * MS).unwrap();
+    // Its transit counts as the clock offset bound (published and received
+    // at the same wall time).
+    let d = g
+        .decide(&above_floor(), 10 * S + 900 * MS - OFFSET)
+        .unwrap();
     assert_eq!(d.verdict, GuardVerdict::Clear, "{}", d.reason);
     assert_eq!(d.views, 1);
     assert_eq!(d.oldest.unwrap().age_ns, S);
-    let d = g.decide(&above_floor(), 10 * S + 900 * MS + 1).unwrap();
+    let d = g
+        .decide(&above_floor(), 10 * S + 900 * MS - OFFSET + 1)
+        .unwrap();
     assert_eq!(d.verdict, GuardVerdict::Stale);
     assert!(d.report.is_none());
     // Stale on arrival when the pipeline alone took longer than the limit.
@@ -203,13 +222,156 @@ fn the_motion_allowance_shrinks_clearances_by_speed_times_age() {
             assert_eq!(late.verdict, GuardVerdict::Stop, "{}", late.reason);
         }
     }
-    // 0.5 m/s for 0.2 s: 0.1 m less, floored at 0.
-    let expected = (clearances[0] - 0.1).max(0.0);
+    // 0.5 m/s for 0.2 s and the transit's offset bound, floored at 0.
+    let expected = (clearances[0] - 0.5 * (0.2 + OFFSET as f64 * 1e-9)).max(0.0);
     assert!((clearances[1] - expected).abs() < 1e-12, "{clearances:?}");
+}
+
+/// Case 4 of issue 23: the arm may move on a clear until its deadline, so an
+/// obstacle's motion until then counts, and so does the sensor's own error.
+#[test]
+fn the_allowance_runs_until_the_horizon_and_counts_the_position_error() {
+    let points = floor_and_wall();
+    let shapes = vec![sphere(1, [-0.5, 0.0, 0.2], 0.05)];
+    let clearance = |speed: f64, horizon: f64, error: f64| {
+        let cfg = GuardConfig {
+            max_obstacle_speed: speed,
+            horizon,
+            ..config()
+        };
+        let mut g = guard_with(&["top"], GuardPolicy::default(), cfg);
+        let mut input = view(&points, TOP, 0);
+        input.position_error = error;
+        g.accept(0, input, 0, WALL).unwrap();
+        let d = g.decide(&shapes, 100 * MS).unwrap();
+        (d.verdict, d.report.unwrap().min_clearance)
+    };
+    let (_, still) = clearance(0.0, 0.0, 0.0);
+    assert!(still > 0.1, "{still}");
+    let age = 0.1 + OFFSET as f64 * 1e-9;
+    let (_, moving) = clearance(0.2, 0.06, 0.0);
+    assert!((moving - (still - 0.2 * (age + 0.06))).abs() < 1e-12);
+    let (_, misplaced) = clearance(0.0, 0.0, 0.03);
+    assert!((misplaced - (still - 0.03)).abs() < 1e-12);
+    // The demo's numbers: 1.3 m/s over a 60 ms deadline is 7.8 cm, more than
+    // the 5 cm stop distance: a shape 10 cm clear at the decision stops.
+    let (verdict, _) = clearance(1.3, 0.06, 0.0);
+    assert_eq!(verdict, GuardVerdict::Stop);
+    // A position error that is not a distance empties the view.
+    let mut g = guard(&["top"], GuardPolicy::default());
+    for bad in [f64::NAN, -0.01, f64::INFINITY] {
+        let mut input = view(&points, TOP, 0);
+        input.position_error = bad;
+        let refused = g.accept(0, input, 0, WALL).unwrap_err();
+        assert_eq!(refused.counter(), "bad_position_error");
+    }
+}
+
+/// Case 3 of issue 23: what held the surrogate up before the guard's callback
+/// ran (the network, a stalled link, a guard frozen or starved) counts.
+#[test]
+fn time_in_transit_and_before_the_callback_counts_toward_the_age() {
+    let points = floor_and_wall();
+    let mut g = guard(&["top"], GuardPolicy::default());
+    // Published 2 s before the guard's callback saw it (a guard stopped with
+    // SIGSTOP, say): stale at once, however recently it "arrived".
+    let mut input = view(&points, TOP, 0);
+    input.published_ns = WALL - 2 * S;
+    g.accept(0, input, 10 * S, WALL).unwrap();
+    let d = g.decide(&above_floor(), 10 * S).unwrap();
+    assert_eq!(d.verdict, GuardVerdict::Stale, "{}", d.reason);
+    assert_eq!(d.oldest.unwrap().age_ns, 2 * S + OFFSET);
+    // 300 ms in transit plus 200 ms since: 0.5 s old.
+    let mut input = view(&points, TOP, 0);
+    input.published_ns = WALL - 300 * MS;
+    g.accept(0, input, 10 * S, WALL).unwrap();
+    let d = g.decide(&above_floor(), 10 * S + 200 * MS).unwrap();
+    assert_eq!(d.verdict, GuardVerdict::Clear, "{}", d.reason);
+    assert_eq!(d.oldest.unwrap().age_ns, 500 * MS + OFFSET);
+    // Published in the guard's future by more than the clock offset bound:
+    // the clocks disagree beyond what was configured; the view is emptied.
+    let mut ahead = view(&points, TOP, 0);
+    ahead.published_ns = WALL + 2 * OFFSET;
+    let refused = g.accept(0, ahead, 10 * S, WALL).unwrap_err();
+    assert_eq!(refused.counter(), "clock_offset");
+    assert!(refused.to_string().contains("future"), "{refused}");
+    assert_eq!(
+        g.decide(&above_floor(), 10 * S).unwrap().verdict,
+        GuardVerdict::NoSurrogate
+    );
+    // Within the bound it is taken, its transit counted as the bound.
+    let mut close = view(&points, TOP, 0);
+    close.published_ns = WALL + OFFSET / 2;
+    g.accept(0, close, 10 * S, WALL).unwrap();
+    let d = g.decide(&above_floor(), 10 * S).unwrap();
+    assert_eq!(d.oldest.unwrap().age_ns, OFFSET);
+}
+
+/// Case 1 of issue 23, as filed: an obstacle appears from above in the top
+/// view's newer cloud; the side view, from the older cloud, ends below it.
+#[test]
+fn views_of_different_clouds_never_clear_what_one_of_them_saw() {
+    let older = floor_and_wall();
+    let mut newer = older.clone();
+    newer.extend((0..5).map(|k| [0.5, 0.0, 1.32 + 0.01 * k as f32]));
+    let link = vec![sphere(1, [0.5, 0.0, 1.25], 0.05)];
+    for speed in [0.0, 0.2] {
+        let cfg = GuardConfig {
+            max_obstacle_speed: speed,
+            ..config()
+        };
+        let mut g = guard_with(&["top", "side"], GuardPolicy::default(), cfg);
+        g.accept(0, view(&newer, TOP, 0), 300 * MS, WALL).unwrap();
+        g.accept(1, view(&older, ALONG, 0), 0, WALL).unwrap();
+        let d = g.decide(&link, 300 * MS).unwrap();
+        assert_eq!(d.verdict, GuardVerdict::Stop, "{speed} m/s: {}", d.reason);
+        assert_eq!(d.views, 2);
+    }
+}
+
+/// Case 2 of issue 23, as filed: a floor seen only where x + y < 0; the rest
+/// of the domain holds trimmed triangles, which are not free space.
+#[test]
+fn space_no_point_covers_inside_the_domain_is_unobserved() {
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(9);
+    let mut points: Vec<[f32; 3]> = Vec::new();
+    while points.len() < 6000 {
+        let (x, y): (f32, f32) = (rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+        if x + y < 0.0 {
+            points.push([x, y, 0.0]);
+        }
+    }
+    // The domain is the points' bounding box, [-1, 1]^2: stretch it there.
+    points.extend([[1.0, -1.0, 0.0], [-1.0, 1.0, 0.0]]);
+    let link = vec![sphere(1, [0.6, 0.6, 0.1], 0.05)];
+    for sides in [Sides::Sandwich, Sides::Upper] {
+        let options = FitOptions {
+            cols: 16,
+            rows: 16,
+            direction: TOP,
+            sides,
+            ..FitOptions::default()
+        };
+        let surrogate = fit_surrogate(&points, &options).unwrap();
+        let mut g = guard(&["top"], GuardPolicy::default());
+        g.accept(0, input_of(&surrogate, 0), 0, WALL).unwrap();
+        let d = g.decide(&link, 0).unwrap();
+        assert_eq!(
+            d.verdict,
+            GuardVerdict::Unobserved,
+            "{sides:?}: {}",
+            d.reason
+        );
+        // Where the floor was seen, the same sphere is clear.
+        let seen = vec![sphere(1, [-0.6, -0.6, 0.3], 0.05)];
+        let d = g.decide(&seen, 0).unwrap();
+        assert_eq!(d.verdict, GuardVerdict::Clear, "{sides:?}: {}", d.reason);
+    }
 }
 
 #[test]
 fn unobserved_space_stops_by_policy_and_is_always_flagged() {
+    // (Under `ignore`, views combine as if their clouds had seen everything.)
     let points = floor_and_wall();
     // Far outside the floor's domain, high up: nothing seen there.
     let outside = vec![sphere(1, [3.0, 0.0, 0.6], 0.05)];
@@ -282,7 +444,7 @@ fn max_report_leaves_room_for_the_motion_allowance() {
         ..GuardPolicy::default()
     };
     let g = guard_with(&["top"], policy, fast);
-    // 0.05 m stop distance plus 1 m/s for the 1 s maximum age.
+    // 0.05 m stop distance plus 1 m/s for the 1 s maximum age (and no horizon).
     assert!((g.config().max_report - 1.05).abs() < 1e-12);
     // Far from everything, an old surrogate still clears (with the cap at
     // 0.2 m, 0.6 s at 1 m/s would leave nothing).
