@@ -1,7 +1,9 @@
 //! The path from surrogate to stop, end to end with real processes: a guard
 //! killed with SIGKILL halts the arm within its deadline (the arm's deadman),
-//! a partition between arm and guard halts it too, and a cloud stamped an
-//! hour in the future is a counted fault, not a fresh surrogate.
+//! a partition between arm and guard halts it too, a cloud stamped an hour in
+//! the future is a counted fault, not a fresh surrogate, a guard frozen while a
+//! surrogate arrives says `stale` when it wakes, and two fit nodes on
+//! different clouds never clear what one of them saw.
 
 mod common;
 
@@ -362,15 +364,46 @@ fn unusable_joint_states_are_answered_with_a_stop_and_counted() {
         shroud_core::message::JointStateMessage::new(5, 9, "demo_arm", vec!["a".into()], vec![0.0])
             .to_bytes()
             .unwrap();
+    // Another arm's joint state, and an encoder glitch past a joint's limits
+    // (the shoulder's are [-2, 2]): neither is a pose to judge.
+    let names = |file: &shroud_core::guard::ArmFile| {
+        file.arm
+            .actuated_joints()
+            .map(|j| j.name().to_string())
+            .collect::<Vec<_>>()
+    };
+    let file =
+        shroud_core::guard::ArmFile::from_toml_str(&std::fs::read_to_string(ARM_FILE).unwrap())
+            .unwrap();
+    let other_arm = shroud_core::message::JointStateMessage::new(
+        5,
+        10,
+        "other_arm",
+        names(&file),
+        vec![0.0; 6],
+    )
+    .to_bytes()
+    .unwrap();
+    let glitch = shroud_core::message::JointStateMessage::new(
+        5,
+        11,
+        "demo_arm",
+        names(&file),
+        vec![0.0, 3.0, 0.0, 0.0, 0.0, 0.0],
+    )
+    .to_bytes()
+    .unwrap();
     let deadline = Instant::now() + LONG;
-    let (mut undecodable, mut misnamed) = (false, false);
-    while !(undecodable && misnamed) {
+    let (mut undecodable, mut misnamed, mut foreign, mut glitched) = (false, false, false, false);
+    while !(undecodable && misnamed && foreign && glitched) {
         assert!(Instant::now() < deadline, "no answers:\n{}", guard.output());
         session
             .put(&key, b"not a joint state".to_vec())
             .wait()
             .unwrap();
         session.put(&key, wrong_names.clone()).wait().unwrap();
+        session.put(&key, other_arm.clone()).wait().unwrap();
+        session.put(&key, glitch.clone()).wait().unwrap();
         while let Ok(Some(s)) = verdicts.recv_timeout(Duration::from_millis(100)) {
             let v = shroud_core::message::CollisionMessage::from_bytes(&s.payload().to_bytes())
                 .unwrap();
@@ -381,15 +414,257 @@ fn unusable_joint_states_are_answered_with_a_stop_and_counted() {
             } else if v.joints_sequence == 9 {
                 assert!(v.reason.contains("joint names"), "{}", v.reason);
                 misnamed = true;
+            } else if v.joints_sequence == 10 {
+                assert!(v.reason.contains("other_arm"), "{}", v.reason);
+                foreign = true;
+            } else if v.joints_sequence == 11 {
+                assert!(v.reason.contains("outside its limits"), "{}", v.reason);
+                glitched = true;
             }
         }
     }
     let counted = status_within(&status, Duration::from_millis(1500))
         .map_or(0, |s| s.counter("dropped_malformed"));
     assert!(
-        counted >= 2,
+        counted >= 4,
         "each unusable joint state is counted: {counted}"
     );
     stop.store(true, Ordering::Relaxed);
     feeder.join().unwrap();
+}
+
+/// The demo arm's joint state at `q`, as its controller would send it.
+fn joint_state(sequence: u64, q: &[f64]) -> Vec<u8> {
+    let file =
+        shroud_core::guard::ArmFile::from_toml_str(&std::fs::read_to_string(ARM_FILE).unwrap())
+            .unwrap();
+    let names = file
+        .arm
+        .actuated_joints()
+        .map(|j| j.name().to_string())
+        .collect();
+    shroud_core::message::JointStateMessage::new(
+        common::unix_ns(),
+        sequence,
+        "demo_arm",
+        names,
+        q.to_vec(),
+    )
+    .to_bytes()
+    .unwrap()
+}
+
+/// Sends joint states at `q` every 20 ms for `window` and returns the verdicts
+/// that answer them (those for other joint states are skipped).
+fn verdicts_for(
+    session: &zenoh::Session,
+    ns: &str,
+    verdicts: &Inbox,
+    q: &[f64],
+    first: u64,
+    window: Duration,
+) -> Vec<shroud_core::message::CollisionMessage> {
+    let key = format!("shroud/{ns}/joints/demo_arm");
+    let start = Instant::now();
+    let mut sequence = first;
+    let mut out = Vec::new();
+    while start.elapsed() < window {
+        session.put(&key, joint_state(sequence, q)).wait().unwrap();
+        sequence += 1;
+        while let Ok(Some(s)) = verdicts.recv_timeout(Duration::from_millis(20)) {
+            let v = shroud_core::message::CollisionMessage::from_bytes(&s.payload().to_bytes())
+                .unwrap();
+            if (first..sequence).contains(&v.joints_sequence) {
+                out.push(v);
+            }
+        }
+    }
+    out
+}
+
+/// A floor of points at height `z` (a little rough, as in [`sheet`]) over
+/// [-half, half]^2, 5 cm apart: every cell of a coarse grid holds points.
+fn floor(z: f32, half: f32) -> Vec<[f32; 3]> {
+    let n = (2.0 * half / 0.05) as usize + 1;
+    (0..n * n)
+        .map(|i| {
+            let at = |k: usize| -half + k as f32 * 0.05;
+            [at(i % n), at(i / n), z + 0.002 * ((i * 7) % 5) as f32]
+        })
+        .collect()
+}
+
+/// A certified sandwich of a wide floor far below the arm, with the sample's
+/// publication time set as a shroud session sets it.
+fn put_far_floor(session: &zenoh::Session, key: &str, sequence: u64) {
+    let options = FitOptions {
+        cols: 8,
+        rows: 8,
+        sides: Sides::Sandwich,
+        ..FitOptions::default()
+    };
+    let surrogate = fit_surrogate(&floor(-2.0, 3.0), &options).unwrap();
+    let bytes =
+        SurrogateMessage::from_surrogate(&surrogate, common::unix_ns(), sequence, "test", 1)
+            .to_bytes()
+            .unwrap();
+    session
+        .put(key, bytes)
+        .timestamp(session.new_timestamp())
+        .wait()
+        .unwrap();
+}
+
+/// The arm folded up above the floor (clear of it by far).
+const FOLDED: [f64; 6] = [0.0, 1.2, 2.2, 1.0, 0.0, 0.0];
+
+/// Issue 23, case 3: a guard frozen (SIGSTOP) while a far surrogate arrives
+/// must not take that surrogate as fresh when it wakes: its time in transit
+/// and in the guard's own queue counts.
+#[test]
+fn a_guard_frozen_while_a_surrogate_arrives_says_stale_when_it_wakes() {
+    let (endpoint, session) = hub_on_free_port();
+    let ns = "e2e-frozen";
+    let verdicts = inbox(&session, format!("shroud/{ns}/collision/demo_arm"));
+    let key = format!("shroud/{ns}/surrogate/far");
+    let mut args = guard_args("far");
+    args.truncate(args.len() - 2); // the default policy: unseen space counts
+    let guard = start(&args, &wiring(&endpoint, ns));
+    // Clear while surrogates are fresh.
+    let deadline = Instant::now() + LONG;
+    let mut sequence = 0;
+    loop {
+        assert!(
+            Instant::now() < deadline,
+            "never clear:\n{}",
+            guard.output()
+        );
+        put_far_floor(&session, &key, sequence);
+        let got = verdicts_for(
+            &session,
+            ns,
+            &verdicts,
+            &FOLDED,
+            sequence * 100,
+            Duration::from_millis(100),
+        );
+        sequence += 1;
+        if got.iter().any(|v| !v.stop) {
+            break;
+        }
+    }
+    guard.signal(libc::SIGSTOP);
+    std::thread::sleep(Duration::from_millis(200));
+    // A surrogate arrives while the guard is frozen; then nothing for longer
+    // than the guard's maximum age (1 s).
+    put_far_floor(&session, &key, sequence);
+    std::thread::sleep(Duration::from_millis(1500));
+    guard.signal(libc::SIGCONT);
+    let woken = verdicts_for(
+        &session,
+        ns,
+        &verdicts,
+        &FOLDED,
+        1_000_000,
+        Duration::from_millis(600),
+    );
+    assert!(
+        !woken.is_empty(),
+        "answers after waking:\n{}",
+        guard.output()
+    );
+    for v in &woken {
+        assert_eq!(
+            v.verdict,
+            shroud_core::message::GuardVerdict::Stale,
+            "a surrogate that waited in a frozen guard is not fresh: {v:?}"
+        );
+    }
+}
+
+/// Issue 23, case 1, with real fit nodes: a top view of a newer cloud sees an
+/// obstacle at the arm's fingertips; a side view of another cloud, which
+/// ends below the fingertips, did not see that space at all. Together: stop.
+#[test]
+fn two_fit_nodes_on_different_clouds_stop_for_an_obstacle_one_of_them_saw() {
+    let (endpoint, session) = hub_on_free_port();
+    let ns = "e2e-two-clouds";
+    let verdicts = inbox(&session, format!("shroud/{ns}/collision/demo_arm"));
+    let w = wiring(&endpoint, ns);
+    let fit = |input: &str, dir: &str| {
+        Proc::start(
+            &[
+                &[
+                    "node", "fit", "--input", input, "--grid", "16x16", "--side", "sandwich",
+                    "--dir", dir,
+                ][..],
+                &w,
+            ]
+            .concat(),
+        )
+    };
+    let (top_fit, side_fit) = (fit("top", "0,0,-1"), fit("side", "0,-1,0"));
+    let mut args = guard_args("top");
+    args.truncate(args.len() - 2); // the default policy: unseen space counts
+    args.extend(["--surrogate".into(), "side".into()]);
+    let guard = start(&args, &w);
+    // At q = 0 the arm hangs straight down; its fingertips are near z = 0.25
+    // over the origin. The top sensor's cloud: a floor and a box there.
+    let mut top = floor(0.0, 2.0);
+    top.extend((0..400).map(|i| {
+        let (a, b, c) = ((i % 8) as f32, ((i / 8) % 8) as f32, (i / 64) as f32);
+        [-0.1 + 0.028 * a, -0.1 + 0.028 * b, 0.15 + 0.03 * c]
+    }));
+    // The side sensor's older cloud: the floor and a low step, nothing above
+    // z = 0.1, so its domain ends below the fingertips.
+    let mut side = floor(0.0, 2.0);
+    side.extend(floor(0.1, 0.5));
+    let hanging = [0.0; 6];
+    let put = |stream: &str, points: &[[f32; 3]], sequence: u64| {
+        let cloud = CloudMessage::new(
+            common::unix_ns(),
+            sequence,
+            stream,
+            Default::default(),
+            points,
+        );
+        session
+            .put(
+                format!("shroud/{ns}/cloud/{stream}"),
+                cloud.to_bytes().unwrap(),
+            )
+            .wait()
+            .unwrap();
+    };
+    let deadline = Instant::now() + LONG;
+    let mut sequence = 0;
+    let seen = loop {
+        assert!(
+            Instant::now() < deadline,
+            "no verdict from two views:\n{}\n{}\n{}",
+            guard.output(),
+            top_fit.output(),
+            side_fit.output()
+        );
+        put("top", &top, sequence);
+        put("side", &side, sequence);
+        let got = verdicts_for(
+            &session,
+            ns,
+            &verdicts,
+            &hanging,
+            sequence * 100,
+            Duration::from_millis(150),
+        );
+        sequence += 1;
+        if let Some(v) = got.into_iter().find(|v| v.views == 2) {
+            break v;
+        }
+    };
+    assert_eq!(
+        seen.verdict,
+        shroud_core::message::GuardVerdict::Stop,
+        "{seen:?}"
+    );
+    assert!(seen.min_clearance < seen.stop_distance, "{seen:?}");
 }

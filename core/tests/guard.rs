@@ -325,7 +325,8 @@ mod guard {
     }
 
     /// The hole in the middle of the annulus cloud is trimmed: a sphere there sees
-    /// the ring (at 0.7) and not a surface spanning the hole.
+    /// the ring (at 0.7) and not a surface spanning the hole as occupied, and
+    /// the hole itself as space the view did not see.
     #[test]
     fn spheres_inside_a_trimmed_hole_see_only_the_ring() {
         let c = cloud(CloudKind::Holes, 20_000, 5);
@@ -356,11 +357,17 @@ mod guard {
             });
         }
         let report = check_shapes(&env, &shapes, 1, &cfg).unwrap();
-        let tally = assert_conservative(&shapes, &report, &pts, "hole");
-        positive += tally.positive;
+        assert_conservative(&shapes, &report, &pts, "hole");
+        for s in &report.shapes {
+            positive += usize::from(s.occupied > 0.0);
+            assert!(
+                s.unobserved && s.unseen == 0.0 && s.clearance == 0.0,
+                "{s:?}"
+            );
+        }
         assert!(
             positive > 80,
-            "only {positive} of 100 spheres in the hole are clear"
+            "only {positive} of 100 spheres in the hole are clear of the ring"
         );
     }
 

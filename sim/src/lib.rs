@@ -26,7 +26,7 @@ mod terrain;
 
 pub use error::{SceneError, MAX_POINTS};
 pub use mesh_scene::{DEFAULT_CYLINDER_SEGMENTS, DEFAULT_TERRAIN_CELLS, MAX_CYLINDER_SEGMENTS};
-pub use moving_spheres::MovingSpheres;
+pub use moving_spheres::{Floor, MovingSpheres};
 pub use path::LissajousPath;
 pub use scanner::{
     Bvh, MeshScan, RangeScanner, RayHit, ScanFrame, ScanPose, ScanResolution, SensorPose,

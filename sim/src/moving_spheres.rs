@@ -28,6 +28,57 @@ pub struct MovingSpheres {
     pub surface_only: bool,
     /// Fraction of the points that belong to the first sphere, in [0, 1].
     pub split: f32,
+    /// A floor under the spheres, as a real cell has (absent by default): a
+    /// sensor looking down sees it wherever the spheres do not hide it, so a
+    /// guard can tell the empty space above it from space nobody saw. Its
+    /// points come after the spheres' and are not counted in `points`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub floor: Option<Floor>,
+}
+
+/// A square floor sampled on a regular grid, so that every cell of a fit over
+/// it holds points (random sampling leaves holes, which are unseen space).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Floor {
+    /// Height of the floor.
+    pub z: f32,
+    /// The floor spans `[-half_extent, half_extent]^2` around the origin.
+    pub half_extent: f32,
+    /// Distance between neighbouring floor points.
+    pub spacing: f32,
+}
+
+/// Floor points at most, so that a typo in `spacing` cannot ask for billions.
+pub const MAX_FLOOR_POINTS: usize = 1 << 20;
+
+impl Floor {
+    /// Points along each side of the grid.
+    fn per_side(&self) -> usize {
+        (2.0 * f64::from(self.half_extent) / f64::from(self.spacing)).floor() as usize + 1
+    }
+
+    fn validate(&self) -> Result<(), SceneError> {
+        check_finite("floor.z", f64::from(self.z))?;
+        check_positive("floor.half_extent", f64::from(self.half_extent))?;
+        check_positive("floor.spacing", f64::from(self.spacing))?;
+        let n = self.per_side();
+        if n.saturating_mul(n) > MAX_FLOOR_POINTS {
+            return Err(SceneError::TooManyPoints {
+                parameter: "floor.spacing".into(),
+                value: n.saturating_mul(n),
+                max: MAX_FLOOR_POINTS,
+            });
+        }
+        Ok(())
+    }
+
+    /// The grid's points, row after row.
+    fn points(&self) -> impl Iterator<Item = [f32; 3]> + '_ {
+        let n = self.per_side();
+        let at = move |i: usize| -self.half_extent + i as f32 * self.spacing;
+        (0..n).flat_map(move |j| (0..n).map(move |i| [at(i), at(j), self.z]))
+    }
 }
 
 impl Default for MovingSpheres {
@@ -55,6 +106,7 @@ impl Default for MovingSpheres {
             seed: 0,
             surface_only: false,
             split: 0.5,
+            floor: None,
         }
     }
 }
@@ -79,7 +131,8 @@ impl MovingSpheres {
         check_positive("radii[1]", f64::from(self.radii[1]))?;
         check_range("split", f64::from(self.split), 0.0, 1.0)?;
         self.paths[0].validate("paths[0]")?;
-        self.paths[1].validate("paths[1]")
+        self.paths[1].validate("paths[1]")?;
+        self.floor.as_ref().map_or(Ok(()), Floor::validate)
     }
 
     /// The cloud at `time` seconds. Deterministic in (config, time): each sphere
@@ -98,6 +151,9 @@ impl MovingSpheres {
             let mut rng = stream_rng(self.seed, &[STREAM_TAG, time_key(time), index as u64]);
             let radius = f64::from(self.radii[index]);
             cloud.extend((0..count).map(|_| sample(&mut rng, centres[index], radius)));
+        }
+        if let Some(floor) = &self.floor {
+            cloud.extend(floor.points());
         }
         Ok(cloud)
     }
@@ -150,6 +206,45 @@ mod tests {
             };
             assert_eq!(scene.generate(0.5).unwrap().len(), points);
             assert_eq!(scene.counts().iter().sum::<usize>(), points);
+        }
+    }
+
+    #[test]
+    fn a_floor_adds_a_regular_grid_under_the_spheres() {
+        let floor = Floor {
+            z: -0.5,
+            half_extent: 1.0,
+            spacing: 0.5,
+        };
+        let scene = MovingSpheres {
+            points: 100,
+            floor: Some(floor),
+            ..MovingSpheres::default()
+        };
+        let cloud = scene.generate(0.0).unwrap();
+        assert_eq!(cloud.len(), 100 + 25);
+        assert!(cloud[100..].iter().all(|p| p[2] == -0.5));
+        assert_eq!(cloud[100], [-1.0, -1.0, -0.5]);
+        assert_eq!(cloud[124], [1.0, 1.0, -0.5]);
+        for bad in [
+            Floor {
+                spacing: 0.0,
+                ..floor
+            },
+            Floor {
+                spacing: 1e-6,
+                ..floor
+            },
+            Floor {
+                z: f32::NAN,
+                ..floor
+            },
+        ] {
+            let scene = MovingSpheres {
+                floor: Some(bad),
+                ..MovingSpheres::default()
+            };
+            assert!(scene.generate(0.0).is_err(), "{bad:?}");
         }
     }
 

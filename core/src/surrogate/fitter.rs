@@ -19,9 +19,12 @@ use crate::spline::UniformCubicSurface;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-/// Enclosed empty regions up to this many triangles (two cells) are sampling
-/// gaps and stay kept (see `TrimMask::fill_small_holes`).
-const SMALL_HOLE: usize = 8;
+/// Enclosed empty regions up to this many triangles stay kept (see
+/// `TrimMask::fill_small_holes`): none. An empty triangle is space the sensor
+/// did not see, and the guard counts it as possibly occupied; a kept one it
+/// would trust as seen (a dark object smaller than two cells returned nothing
+/// and would vanish).
+const SMALL_HOLE: usize = 0;
 
 /// Largest grid side accepted (a guard against absurd allocations from input).
 pub const MAX_GRID: usize = 1024;
