@@ -379,12 +379,17 @@ fn devices_a_utm_30lx_streams_multi_echo_ranges_with_intensity() {
 #[test]
 fn devices_the_lidar_launch_file_runs_an_emulated_urg_to_the_guard() {
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/launch/lidar.toml");
-    let mut launcher = Proc::start(&["launch", file, "--duration", "12"]);
+    let mut launcher = Proc::start(&["launch", file, "--duration", "20"]);
     // A summary line once a certified surrogate of an assembled sweep came
     // through the fit node and the guard is answering the arm.
     let line = launcher.expect_line("certified", LONG);
     assert!(line.contains("0 violations"), "{line}");
     launcher.expect_line("demo_arm: ", LONG);
+    // With the default policy (space no sensor saw is occupied), the arm
+    // still moves where the table was seen.
+    launcher.expect_line("arm: ", LONG);
+    let moving = launcher.expect_line(", moving, ", LONG);
+    assert!(moving.contains("certified"), "{moving}");
     assert!(launcher.wait_exit(LONG).success(), "{}", launcher.output());
     let output = launcher.output();
     assert!(output.contains("all nodes stopped cleanly"), "{output}");
