@@ -8,7 +8,7 @@
 mod common;
 
 use common::{
-    alive, free_port, hub, hub_on_free_port, inbox, joint_spread, peer_session, sheet, wait_moving,
+    alive, free_port, hub, hub_on_free_port, inbox, joint_spread, peer_session, wait_moving,
     wiring, Inbox, Proc,
 };
 use shroud_core::message::{CloudMessage, NodeStatusMessage, SurrogateMessage};
@@ -23,7 +23,8 @@ use zenoh::Wait;
 const LONG: Duration = Duration::from_secs(60);
 const ARM_FILE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/launch/arms/demo_arm.toml");
 
-/// A certified sandwich of a sheet far below the arm, as the fit node sends it.
+/// A certified sandwich of a floor far below the arm and wider than its
+/// reach, as the fit node sends it.
 fn far_surrogate(sequence: u64) -> Vec<u8> {
     let options = FitOptions {
         cols: 8,
@@ -31,14 +32,14 @@ fn far_surrogate(sequence: u64) -> Vec<u8> {
         sides: Sides::Sandwich,
         ..FitOptions::default()
     };
-    let surrogate = fit_surrogate(&sheet(-2.0), &options).unwrap();
+    let surrogate = fit_surrogate(&floor(-2.0, 3.0), &options).unwrap();
     SurrogateMessage::from_surrogate(&surrogate, common::unix_ns(), sequence, "test", 1)
         .to_bytes()
         .unwrap()
 }
 
-/// The guard args every test uses: the sheet covers only [-1, 1]^2, and the arm
-/// reaches past it, so unobserved space is ignored here.
+/// The guard args every test uses, with the default policy: space no sensor
+/// saw counts as occupied (the floors here are wider than the arm's reach).
 fn guard_args(surrogate: &str) -> Vec<String> {
     [
         "node",
@@ -50,7 +51,6 @@ fn guard_args(surrogate: &str) -> Vec<String> {
     ]
     .iter()
     .map(|s| s.to_string())
-    .chain(["--unobserved".into(), "ignore".into()])
     .collect()
 }
 
@@ -59,6 +59,13 @@ fn arm_args() -> Vec<String> {
         .iter()
         .map(|s| s.to_string())
         .collect()
+}
+
+/// A hub on a free port and an inbox of the demo arm's verdicts in `ns`.
+fn verdict_rig(ns: &str) -> (String, zenoh::Session, Inbox) {
+    let (endpoint, session) = hub_on_free_port();
+    let verdicts = inbox(&session, format!("shroud/{ns}/collision/demo_arm"));
+    (endpoint, session, verdicts)
 }
 
 fn start(args: &[String], wiring: &[&str]) -> Proc {
@@ -155,18 +162,23 @@ fn a_killed_guard_halts_the_arm_within_its_deadline() {
     feeder.join().unwrap();
 }
 
-/// Publishes the far sheet as a cloud stamped `stamp_ns`.
+/// Publishes the far floor as a cloud stamped `stamp_ns`.
 fn put_sheet(session: &zenoh::Session, ns: &str, stamp_ns: u64, sequence: u64) {
-    let cloud = CloudMessage::new(stamp_ns, sequence, "test", Default::default(), &sheet(-2.0));
+    let cloud = CloudMessage::new(
+        stamp_ns,
+        sequence,
+        "test",
+        Default::default(),
+        &floor(-2.0, 3.0),
+    );
     let key = format!("shroud/{ns}/cloud/future");
     session.put(key, cloud.to_bytes().unwrap()).wait().unwrap();
 }
 
 #[test]
 fn a_cloud_stamped_an_hour_ahead_is_a_counted_fault_not_a_fresh_surrogate() {
-    let (endpoint, session) = hub_on_free_port();
     let ns = "e2e-skew";
-    let verdicts = inbox(&session, format!("shroud/{ns}/collision/demo_arm"));
+    let (endpoint, session, verdicts) = verdict_rig(ns);
     let status = inbox(&session, format!("shroud/{ns}/status/guard"));
     let w = wiring(&endpoint, ns);
     let fit = Proc::start(
@@ -348,9 +360,8 @@ fn a_partition_between_arm_and_guard_halts_the_arm() {
 /// (silence would look like a partition), and counts each as malformed.
 #[test]
 fn unusable_joint_states_are_answered_with_a_stop_and_counted() {
-    let (endpoint, session) = hub_on_free_port();
     let ns = "e2e-bad-joints";
-    let verdicts = inbox(&session, format!("shroud/{ns}/collision/demo_arm"));
+    let (endpoint, session, verdicts) = verdict_rig(ns);
     let status = inbox(&session, format!("shroud/{ns}/status/guard"));
     let stop = Arc::new(AtomicBool::new(false));
     let feeder = keep_fresh(
@@ -482,7 +493,7 @@ fn verdicts_for(
     out
 }
 
-/// A floor of points at height `z` (a little rough, as in [`sheet`]) over
+/// A floor of points at height `z` (a little rough, as in `common::sheet`) over
 /// [-half, half]^2, 5 cm apart: every cell of a coarse grid holds points.
 fn floor(z: f32, half: f32) -> Vec<[f32; 3]> {
     let n = (2.0 * half / 0.05) as usize + 1;
@@ -497,19 +508,8 @@ fn floor(z: f32, half: f32) -> Vec<[f32; 3]> {
 /// A certified sandwich of a wide floor far below the arm, with the sample's
 /// publication time set as a shroud session sets it.
 fn put_far_floor(session: &zenoh::Session, key: &str, sequence: u64) {
-    let options = FitOptions {
-        cols: 8,
-        rows: 8,
-        sides: Sides::Sandwich,
-        ..FitOptions::default()
-    };
-    let surrogate = fit_surrogate(&floor(-2.0, 3.0), &options).unwrap();
-    let bytes =
-        SurrogateMessage::from_surrogate(&surrogate, common::unix_ns(), sequence, "test", 1)
-            .to_bytes()
-            .unwrap();
     session
-        .put(key, bytes)
+        .put(key, far_surrogate(sequence))
         .timestamp(session.new_timestamp())
         .wait()
         .unwrap();
@@ -523,13 +523,10 @@ const FOLDED: [f64; 6] = [0.0, 1.2, 2.2, 1.0, 0.0, 0.0];
 /// and in the guard's own queue counts.
 #[test]
 fn a_guard_frozen_while_a_surrogate_arrives_says_stale_when_it_wakes() {
-    let (endpoint, session) = hub_on_free_port();
     let ns = "e2e-frozen";
-    let verdicts = inbox(&session, format!("shroud/{ns}/collision/demo_arm"));
+    let (endpoint, session, verdicts) = verdict_rig(ns);
     let key = format!("shroud/{ns}/surrogate/far");
-    let mut args = guard_args("far");
-    args.truncate(args.len() - 2); // the default policy: unseen space counts
-    let guard = start(&args, &wiring(&endpoint, ns));
+    let guard = start(&guard_args("far"), &wiring(&endpoint, ns));
     // Clear while surrogates are fresh.
     let deadline = Instant::now() + LONG;
     let mut sequence = 0;
@@ -587,9 +584,8 @@ fn a_guard_frozen_while_a_surrogate_arrives_says_stale_when_it_wakes() {
 /// ends below the fingertips, did not see that space at all. Together: stop.
 #[test]
 fn two_fit_nodes_on_different_clouds_stop_for_an_obstacle_one_of_them_saw() {
-    let (endpoint, session) = hub_on_free_port();
     let ns = "e2e-two-clouds";
-    let verdicts = inbox(&session, format!("shroud/{ns}/collision/demo_arm"));
+    let (endpoint, session, verdicts) = verdict_rig(ns);
     let w = wiring(&endpoint, ns);
     let fit = |input: &str, dir: &str| {
         Proc::start(
@@ -605,7 +601,6 @@ fn two_fit_nodes_on_different_clouds_stop_for_an_obstacle_one_of_them_saw() {
     };
     let (top_fit, side_fit) = (fit("top", "0,0,-1"), fit("side", "0,-1,0"));
     let mut args = guard_args("top");
-    args.truncate(args.len() - 2); // the default policy: unseen space counts
     args.extend(["--surrogate".into(), "side".into()]);
     let guard = start(&args, &w);
     // At q = 0 the arm hangs straight down; its fingertips are near z = 0.25

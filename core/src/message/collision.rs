@@ -11,8 +11,9 @@ use serde::{Deserialize, Serialize};
 pub struct LinkClearance {
     pub link: String,
     pub clearance: f64,
-    /// Some shape of the link reaches space that no fresh surrogate covers (the
-    /// sensors never saw it): its clearance speaks only of the observed part.
+    /// The link's bound is set by space that no fresh surrogate saw (outside
+    /// their domains, over trimmed triangles): an obstacle there was not seen,
+    /// only not excluded.
     #[serde(default)]
     pub unobserved: bool,
 }
@@ -21,9 +22,9 @@ pub struct LinkClearance {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum GuardVerdict {
-    /// Every link is farther than the stop distance from every surrogate
-    /// sandwich, after the motion allowance, and (under `--unobserved stop`)
-    /// stays inside observed space.
+    /// Every link is farther than the stop distance, after the motion
+    /// allowance, from what some fresh view saw occupied and (under
+    /// `--unobserved stop`) from what it did not see.
     Clear,
     /// Some link is within the stop distance, or the joint state could not be
     /// checked at all (the `reason` says which).
@@ -34,8 +35,9 @@ pub enum GuardVerdict {
     /// Every surrogate is older than the allowed age, measured on the guard's
     /// own clock plus the pipeline delay the upstream nodes measured.
     Stale,
-    /// Some link reaches outside every fresh surrogate's domain, and the
-    /// guard's policy is `--unobserved stop`.
+    /// Some link is within the stop distance of space no fresh view saw (and
+    /// of nothing a view saw occupied), and the guard's policy is
+    /// `--unobserved stop`.
     Unobserved,
     /// Not sent by the guard: a verdict consumer's own state when no verdict
     /// for one of its recent joint states arrived in time (the deadman).

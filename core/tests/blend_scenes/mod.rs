@@ -55,6 +55,7 @@ pub fn sim_sphere(r: f32, centre: [f64; 3], count: usize, seed: u64) -> Vec<[f32
         seed,
         surface_only: true,
         split: 1.0,
+        floor: None,
     }
     .generate(0.0)
     .expect("valid sphere scene")

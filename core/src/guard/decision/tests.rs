@@ -403,10 +403,12 @@ fn unobserved_space_stops_by_policy_and_is_always_flagged() {
 #[test]
 fn a_second_view_clears_what_the_top_view_cannot() {
     let points = floor_and_wall();
-    // A coarse top view: the wall's cell reaches past the sphere.
+    // A coarse top view: the wall's cell reaches past the sphere. The side
+    // view's grid is coarse enough that each of its triangles holds wall
+    // points (an empty one is space it did not see).
     let (top, side) = (
         view_on_grid(&points, TOP, 8, 0),
-        view_on_grid(&points, SIDE, 32, 0),
+        view_on_grid(&points, SIDE, 8, 0),
     );
     let mut one = guard(&["top"], GuardPolicy::default());
     one.accept(0, top.clone(), 0, WALL).unwrap();
