@@ -1,7 +1,7 @@
 //! Tests of the scan-to-cloud assembly: poses, profiles, joint tracks, windows.
 
 use super::*;
-use crate::ingest::device::{HostTime, RangeScan, Ray};
+use crate::ingest::device::{HostTime, RangeScan, Ray, StampBound};
 use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -23,6 +23,7 @@ fn scan(sequence: u32, stamp_ns: u64, rays: Vec<Ray>) -> RangeScan {
         stamp_ns,
         received: HostTime::new(stamp_ns - T0 + 1_000, stamp_ns),
         rays,
+        stamp_bound: StampBound::Untracked,
     }
 }
 
