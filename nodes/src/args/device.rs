@@ -3,12 +3,12 @@
 //! driver configurations.
 
 use anyhow::{bail, Result};
-use std::time::Duration;
 use clap::{Args, ValueEnum};
 use shroud_core::ingest::benewake::{BenewakeConfig, BenewakeDriver, BenewakeModel, DistanceUnit};
 use shroud_core::ingest::device::DeviceDriver;
 use shroud_core::ingest::rplidar::{MotorControl, RplidarConfig, RplidarDriver, ScanMode};
 use shroud_core::ingest::scip::{Link, ScanCommand, ScipConfig, ScipDriver};
+use std::time::Duration;
 
 /// The protocol the device on the port speaks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -220,7 +220,8 @@ impl DeviceArgs {
             }
         }
         if let Some(latency) = self.link_latency {
-            if !(latency >= 0.0 && latency <= 10.0) {
+            // NaN is in no range, so it is refused too.
+            if !(0.0..=10.0).contains(&latency) {
                 bail!("--link-latency must be between 0 and 10 seconds, not {latency}");
             }
         }

@@ -8,9 +8,7 @@ use super::backoff::{Backoff, BackoffConfig};
 use super::ReaderError;
 use crate::transport::{monotonic_ns, unix_ns};
 use serialport::{ClearBuffer, SerialPort};
-use shroud_core::ingest::device::{
-    DeviceDriver, DeviceStats, DriverOutput, HostTime, ReadWindow,
-};
+use shroud_core::ingest::device::{DeviceDriver, DeviceStats, DriverOutput, HostTime, ReadWindow};
 use std::io;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;

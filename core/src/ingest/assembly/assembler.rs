@@ -272,10 +272,7 @@ impl CloudAssembler {
             StampBound::Within {
                 earliest_ns,
                 latest_ns,
-            } => (
-                scan.stamp_ns.min(earliest_ns),
-                scan.stamp_ns.max(latest_ns),
-            ),
+            } => (scan.stamp_ns.min(earliest_ns), scan.stamp_ns.max(latest_ns)),
             _ => (scan.stamp_ns, scan.stamp_ns),
         };
         let last = last.saturating_add(scan.rays.last().map_or(0, |r| r.offset_ns as u64));

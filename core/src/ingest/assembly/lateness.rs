@@ -142,7 +142,10 @@ pub fn stamp_uncertainty_ns(bound: StampBound, at: u64) -> Option<u64> {
         StampBound::Within {
             earliest_ns,
             latest_ns,
-        } => Some(at.saturating_sub(earliest_ns).max(latest_ns.saturating_sub(at))),
+        } => Some(
+            at.saturating_sub(earliest_ns)
+                .max(latest_ns.saturating_sub(at)),
+        ),
         StampBound::Unbounded => None,
     }
 }
