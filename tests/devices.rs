@@ -443,7 +443,7 @@ fn devices_the_lidar_launch_file_runs_an_emulated_urg_to_the_guard() {
 
 #[test]
 fn devices_bad_device_settings_are_named_errors_before_anything_opens() {
-    let cases: [(&[&str], &str); 7] = [
+    let cases: [(&[&str], &str); 10] = [
         (
             &[
                 "node",
@@ -492,6 +492,45 @@ fn devices_bad_device_settings_are_named_errors_before_anything_opens() {
                 "node", "serial", "--device", "hokuyo", "--port", "/x", "--mount", "1,2,3",
             ],
             "expected 6 comma-separated numbers",
+        ),
+        (
+            &[
+                "node",
+                "serial",
+                "--device",
+                "tfmini",
+                "--port",
+                "/x",
+                "--link-latency",
+                "-0.001",
+            ],
+            "--link-latency must be between 0 and 10 seconds",
+        ),
+        (
+            &[
+                "node",
+                "serial",
+                "--device",
+                "hokuyo",
+                "--port",
+                "/x",
+                "--link-latency",
+                "0.01",
+            ],
+            "--link-latency applies to --device tfmini only",
+        ),
+        (
+            &[
+                "node",
+                "serial",
+                "--device",
+                "tfmini",
+                "--port",
+                "/x",
+                "--max-position-error",
+                "0",
+            ],
+            "the largest position error 0 m must be positive",
         ),
     ];
     for (args, message) in cases {
