@@ -502,7 +502,7 @@ fn devices_bad_device_settings_are_named_errors_before_anything_opens() {
                 "--port",
                 "/x",
                 "--link-latency",
-                "-0.001",
+                "11",
             ],
             "--link-latency must be between 0 and 10 seconds",
         ),
