@@ -443,6 +443,15 @@ fn devices_the_lidar_launch_file_runs_an_emulated_urg_to_the_guard() {
 
 #[test]
 fn devices_bad_device_settings_are_named_errors_before_anything_opens() {
+    // `shroud node serial --device DEVICE --port /x OPTION VALUE`.
+    let serial = |device, option, value| {
+        vec![
+            "node", "serial", "--device", device, "--port", "/x", option, value,
+        ]
+    };
+    let late_tf = serial("tfmini", "--link-latency", "11");
+    let late_urg = serial("hokuyo", "--link-latency", "0.01");
+    let exact_tf = serial("tfmini", "--max-position-error", "0");
     let cases: [(&[&str], &str); 10] = [
         (
             &[
@@ -493,45 +502,9 @@ fn devices_bad_device_settings_are_named_errors_before_anything_opens() {
             ],
             "expected 6 comma-separated numbers",
         ),
-        (
-            &[
-                "node",
-                "serial",
-                "--device",
-                "tfmini",
-                "--port",
-                "/x",
-                "--link-latency",
-                "11",
-            ],
-            "--link-latency must be between 0 and 10 seconds",
-        ),
-        (
-            &[
-                "node",
-                "serial",
-                "--device",
-                "hokuyo",
-                "--port",
-                "/x",
-                "--link-latency",
-                "0.01",
-            ],
-            "--link-latency applies to --device tfmini only",
-        ),
-        (
-            &[
-                "node",
-                "serial",
-                "--device",
-                "tfmini",
-                "--port",
-                "/x",
-                "--max-position-error",
-                "0",
-            ],
-            "the largest position error 0 m must be positive",
-        ),
+        (&late_tf, "--link-latency must be between 0 and 10 seconds"),
+        (&late_urg, "--link-latency applies to --device tfmini only"),
+        (&exact_tf, "the largest position error 0 m must be positive"),
     ];
     for (args, message) in cases {
         let mut proc = Proc::start(args);
