@@ -8,8 +8,8 @@
 mod common;
 
 use common::device_rig::{
-    clouds, expect_certified_surrogate, fit_from_above, label, path, status_until, Rig, LONG,
-    TILTING,
+    clouds, expect_certified_surrogate, fit_from_above, label, path, status_until, CpuLoad, Rig,
+    LONG, TILTING,
 };
 use common::Proc;
 use shroud_core::message::CloudMessage;
@@ -245,24 +245,65 @@ const PAN_MOUNT: [&str; 6] = [
     "0,0,0,0,50,0",
 ];
 
-/// Every point of `clouds` lies on the slope: the beam was placed at the
-/// pan angle of its own time (5° off would put points ~0.1 m off it).
+/// The node options of the panning TFmini tests. The emulator sends, at
+/// each of its 2 ms steps, every frame due by then: under load a frame can
+/// wait up to a period (10 ms at the factory 100 Hz) and a late step where
+/// the host cannot see it, so its link latency is 15 ms.
+const TF_TIMING: [&str; 2] = ["--link-latency", "0.015"];
+
+/// A bound on the position error of a sane cloud here: the node's default
+/// maximum (a reading less sure of its place is dropped).
+const SANE_POSITION_ERROR_M: f64 = 0.25;
+
+/// Every point of `clouds` lies on the slope within the error its cloud
+/// states, plus the emulator's range noise: the beam was placed at the pan
+/// angle of the best estimate of its time, and the uncertainty of that time
+/// through the pan speed bounds how far off (5° off would put points
+/// ~0.1 m off it). A point `d` metres off moves `z - x/2` by at most
+/// `d·√1.25`.
 fn assert_on_slope(clouds: &[CloudMessage]) {
     let mut points = 0;
     for cloud in clouds {
+        let error = cloud.position_error_m;
+        assert!(
+            error.is_finite() && error > 0.0 && error <= SANE_POSITION_ERROR_M,
+            "cloud {} states a position error of {error} m",
+            cloud.sequence
+        );
+        let tolerance = 0.06 + error * 1.25f64.sqrt();
+        let mut worst = 0.0f64;
         for p in cloud.point_array().unwrap() {
             points += 1;
+            let off = (p[2] - p[0] / 2.0).abs() as f64;
+            worst = worst.max(off);
             assert!(
-                (p[2] - p[0] / 2.0).abs() < 0.06,
-                "a point {p:?} off the slope"
+                off < tolerance,
+                "a point {p:?} off the slope by {off}, more than {tolerance} \
+                 (position error {error} m)"
             );
         }
+        eprintln!(
+            "cloud {}: {} points, position error {error:.4} m, worst z - x/2 {worst:.4}",
+            cloud.sequence,
+            cloud.point_array().unwrap().len()
+        );
     }
     assert!(points > 50, "{points} points on the slope");
 }
 
+/// Logs the node's count of readings dropped for their lateness.
+fn log_late_readings(status: &shroud_core::message::NodeStatusMessage) {
+    eprintln!(
+        "readings dropped: {} without a time bound, {} beyond the largest error",
+        status.counter("readings_late_unbounded"),
+        status.counter("readings_late_beyond_bound")
+    );
+}
+
 #[test]
 fn devices_a_panning_tfmini_placed_by_its_sweep_profile_draws_the_slope() {
+    // Two busy threads compete with the emulator and the nodes throughout.
+    let _load = CpuLoad::start(2);
     let rig = Rig::new("dev-tf");
     let slope = slope_obj(rig.dir.path());
     let mut args = vec![
@@ -281,6 +322,7 @@ fn devices_a_panning_tfmini_placed_by_its_sweep_profile_draws_the_slope() {
     let status_inbox = rig.inbox("status", "dev");
     let mut node_args = vec!["--sweep", PANNING];
     node_args.extend(PAN_MOUNT);
+    node_args.extend(TF_TIMING);
     let surrogate_inbox = rig.inbox("surrogate", "dev");
     let node = rig.serial("tfmini", &node_args);
     let _fit = fit_from_above(&rig);
@@ -293,6 +335,7 @@ fn devices_a_panning_tfmini_placed_by_its_sweep_profile_draws_the_slope() {
             && label(s, "device.state") == "streaming"
     });
     assert_eq!(label(&status, "device.model"), "tfmini-plus", "{status:?}");
+    log_late_readings(&status);
     // Streaming again after the stall.
     let _ = cloud_inbox.drain().count();
     assert_on_slope(&clouds(&cloud_inbox, 2, &node)[1..]);
@@ -300,6 +343,9 @@ fn devices_a_panning_tfmini_placed_by_its_sweep_profile_draws_the_slope() {
 
 #[test]
 fn devices_a_panning_tfmini_placed_by_joint_states_draws_the_slope() {
+    // Two busy threads compete with the emulator, the node and the joint
+    // states' publisher throughout.
+    let _load = CpuLoad::start(2);
     let rig = Rig::new("dev-tf-joint");
     let slope = slope_obj(rig.dir.path());
     let mut args = vec!["--world", slope.as_str(), "--sweep", PANNING];
@@ -331,11 +377,16 @@ fn devices_a_panning_tfmini_placed_by_joint_states_draws_the_slope() {
         })
     };
     let cloud_inbox = rig.inbox("cloud", "dev");
+    let status_inbox = rig.inbox("status", "dev");
     let mut node_args = vec!["--mount-joint", "pan", "--cloud", "time:1"];
     node_args.extend(PAN_MOUNT);
+    node_args.extend(TF_TIMING);
     let mut node = rig.serial("tfmini", &node_args);
     let got = clouds(&cloud_inbox, 3, &node);
     assert_on_slope(&got[1..]);
+    log_late_readings(&status_until(&status_inbox, &node, "clouds", |s| {
+        s.counter("clouds") >= 3
+    }));
     // A SIGTERM stops it cleanly while joint states still come.
     node.signal(libc::SIGTERM);
     let status = node.wait_exit(Duration::from_secs(8));
@@ -397,7 +448,16 @@ fn devices_the_lidar_launch_file_runs_an_emulated_urg_to_the_guard() {
 
 #[test]
 fn devices_bad_device_settings_are_named_errors_before_anything_opens() {
-    let cases: [(&[&str], &str); 7] = [
+    // `shroud node serial --device DEVICE --port /x OPTION VALUE`.
+    let serial = |device, option, value| {
+        vec![
+            "node", "serial", "--device", device, "--port", "/x", option, value,
+        ]
+    };
+    let late_tf = serial("tfmini", "--link-latency", "11");
+    let late_urg = serial("hokuyo", "--link-latency", "0.01");
+    let exact_tf = serial("tfmini", "--max-position-error", "0");
+    let cases: [(&[&str], &str); 10] = [
         (
             &[
                 "node",
@@ -447,6 +507,9 @@ fn devices_bad_device_settings_are_named_errors_before_anything_opens() {
             ],
             "expected 6 comma-separated numbers",
         ),
+        (&late_tf, "--link-latency must be between 0 and 10 seconds"),
+        (&late_urg, "--link-latency applies to --device tfmini only"),
+        (&exact_tf, "the largest position error 0 m must be positive"),
     ];
     for (args, message) in cases {
         let mut proc = Proc::start(args);

@@ -8,7 +8,7 @@
 //! driver is a deterministic state machine of its input and clock, so a
 //! recorded device side replays the recorded session.
 
-use shroud_core::ingest::device::{DeviceDriver, DriverOutput, HostTime};
+use shroud_core::ingest::device::{DeviceDriver, DriverOutput, HostTime, ReadWindow, StampBound};
 use shroud_sim::device::{emulator, EmulatorOptions, RayReturn, RaySource};
 
 /// Where the clock starts (monotonic and Unix).
@@ -25,7 +25,8 @@ pub type MakeDriver = fn(choice: u8) -> Box<dyn DeviceDriver>;
 
 /// Runs the driver `data` chooses on the records of `data` and checks what it
 /// says: every byte counted, one `scans` count per delivered scan, scans of
-/// a bounded size, and reasons that say something.
+/// a bounded size, stamps inside their own time bounds, and reasons that say
+/// something. Each record is one read, called when the one before returned.
 pub fn run(make: MakeDriver, data: &[u8]) {
     let Some((&choice, mut rest)) = data.split_first() else {
         return;
@@ -35,10 +36,16 @@ pub fn run(make: MakeDriver, data: &[u8]) {
     let mut out = Vec::new();
     let (mut fed, mut scans) = (0u64, 0u64);
     driver.connect(now, &mut out);
+    let mut previous_read: Option<HostTime> = None;
     while let [step, len, tail @ ..] = rest {
         let (bytes, after) = tail.split_at(usize::from(*len).min(tail.len()));
         now = now.plus_ns(u64::from(*step) * 1_000_000);
-        driver.receive(bytes, now, &mut out);
+        let window = ReadWindow {
+            after: previous_read,
+            returned: now,
+        };
+        driver.receive_read(bytes, window, &mut out);
+        previous_read = Some(now);
         driver.poll(now, &mut out);
         fed += bytes.len() as u64;
         scans += out.drain(..).map(|o| check(&o)).sum::<u64>();
@@ -58,6 +65,17 @@ fn check(output: &DriverOutput) -> u64 {
                 "a scan of {} rays",
                 scan.rays.len()
             );
+            if let StampBound::Within {
+                earliest_ns,
+                latest_ns,
+            } = scan.stamp_bound
+            {
+                assert!(
+                    earliest_ns <= scan.stamp_ns && scan.stamp_ns <= latest_ns,
+                    "stamp {} outside its bound [{earliest_ns}, {latest_ns}]",
+                    scan.stamp_ns
+                );
+            }
             1
         }
         DriverOutput::Reconnect(reason) => {

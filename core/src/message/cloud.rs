@@ -38,6 +38,14 @@ pub struct CloudMessage {
     /// output) to this publication's encoding. Unlike `stamp_ns`, which is the device's
     /// word, this is what safety decisions age clouds by.
     pub pipeline_ns: u64,
+    /// The largest distance, in metres, between a point of this cloud and
+    /// where the sensor really measured it, as far as the producer can
+    /// bound it: a reading of a sensor without its own clock, read late by
+    /// a loaded host, is placed at an uncertain mount angle (finite, >= 0;
+    /// 0 when nothing is known to add, and in messages from before the
+    /// field existed).
+    #[serde(default)]
+    pub position_error_m: f64,
     /// Which sensor or scene produced it.
     pub source: String,
     pub pose: SensorPose,
@@ -67,6 +75,7 @@ impl CloudMessage {
             stamp_ns,
             sequence,
             pipeline_ns: 0,
+            position_error_m: 0.0,
             source: source.to_owned(),
             pose,
             points: f32s_to_bytes(points.iter().flatten().copied()),
@@ -214,6 +223,67 @@ mod tests {
             CloudMessage::from_bytes(&msg.to_bytes().unwrap()),
             Err(MessageError::Count { .. })
         ));
+    }
+
+    #[test]
+    fn the_position_error_round_trips_and_old_messages_read_as_zero() {
+        let mut msg = sample();
+        msg.position_error_m = 0.125;
+        let bytes = msg.to_bytes().unwrap();
+        let back = CloudMessage::from_bytes(&bytes).unwrap();
+        assert_eq!(back.position_error_m, 0.125);
+        assert_eq!(back, msg);
+        let view = super::super::CloudView::from_bytes(&bytes).unwrap();
+        assert_eq!(view.position_error_m(), 0.125);
+        // `points` stays last: the field goes before it in the map.
+        let tail = &bytes[bytes.len() - msg.points.len() - 12..];
+        assert!(tail.windows(6).any(|w| w == b"points"));
+        // A message from before the field existed.
+        #[derive(serde::Serialize)]
+        struct Legacy<'a> {
+            version: u16,
+            stamp_ns: u64,
+            sequence: u64,
+            pipeline_ns: u64,
+            source: &'a str,
+            pose: SensorPose,
+            #[serde(with = "serde_bytes")]
+            points: &'a [u8],
+        }
+        let legacy = Legacy {
+            version: msg.version,
+            stamp_ns: msg.stamp_ns,
+            sequence: msg.sequence,
+            pipeline_ns: 3,
+            source: &msg.source,
+            pose: msg.pose,
+            points: &msg.points,
+        };
+        let old = rmp_serde::to_vec_named(&legacy).unwrap();
+        let read = CloudMessage::from_bytes(&old).unwrap();
+        assert_eq!(read.position_error_m, 0.0);
+        assert_eq!(read.point_array().unwrap(), msg.point_array().unwrap());
+    }
+
+    #[test]
+    fn a_position_error_that_is_no_distance_is_a_named_error() {
+        for bad in [f64::NAN, -0.5, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut msg = sample();
+            msg.position_error_m = bad;
+            let bytes = msg.to_bytes().unwrap();
+            assert!(
+                matches!(
+                    CloudMessage::from_bytes(&bytes),
+                    Err(MessageError::PositionError { .. })
+                ),
+                "{bad}"
+            );
+            let view = super::super::CloudView::new(1, 2, "s", SensorPose::default(), &[]);
+            assert!(matches!(
+                view.with_position_error_m(bad),
+                Err(MessageError::PositionError { .. })
+            ));
+        }
     }
 
     #[test]

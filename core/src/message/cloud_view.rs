@@ -23,6 +23,9 @@ pub struct CloudView<'a> {
     pub sequence: u64,
     /// See [`CloudMessage::pipeline_ns`].
     pub pipeline_ns: u64,
+    /// See [`CloudMessage::position_error_m`].
+    #[serde(default)]
+    pub position_error_m: f64,
     #[serde(borrow)]
     pub source: Cow<'a, str>,
     pub pose: SensorPose,
@@ -64,6 +67,7 @@ impl<'a> CloudView<'a> {
             stamp_ns,
             sequence,
             pipeline_ns: 0,
+            position_error_m: 0.0,
             source: Cow::Borrowed(source),
             pose,
             align: None,
@@ -91,6 +95,20 @@ impl<'a> CloudView<'a> {
     pub fn with_pipeline_ns(mut self, pipeline_ns: u64) -> Self {
         self.pipeline_ns = pipeline_ns;
         self
+    }
+
+    /// The same message with a bound on its points' position error
+    /// ([`CloudMessage::position_error_m`]); refused unless finite and >= 0.
+    pub fn with_position_error_m(mut self, metres: f64) -> Result<Self, MessageError> {
+        check_position_error(metres)?;
+        self.position_error_m = metres;
+        Ok(self)
+    }
+
+    /// The bound on the points' position error, metres
+    /// ([`CloudMessage::position_error_m`]).
+    pub fn position_error_m(&self) -> f64 {
+        self.position_error_m
     }
 
     /// The same message with an `align` field that puts the points blob at a
@@ -146,6 +164,7 @@ impl<'a> CloudView<'a> {
     pub fn from_bytes(bytes: &'a [u8]) -> Result<Self, MessageError> {
         let view: CloudView<'a> = super::blob::decode(bytes)?;
         check_version(view.version)?;
+        check_position_error(view.position_error_m)?;
         let pose = view.pose.position.iter().chain(&view.pose.orientation);
         if let Some(index) = pose.clone().position(|v| !v.is_finite()) {
             return Err(MessageError::NonFinite {
@@ -229,6 +248,7 @@ impl<'a> CloudView<'a> {
             stamp_ns: self.stamp_ns,
             sequence: self.sequence,
             pipeline_ns: self.pipeline_ns,
+            position_error_m: self.position_error_m,
             source: self.source.clone().into_owned(),
             pose: self.pose,
             points: self.points.to_vec(),
@@ -239,6 +259,15 @@ impl<'a> CloudView<'a> {
         msg.intensity_array()?;
         msg.channel_arrays()?;
         Ok(msg)
+    }
+}
+
+/// A position error bound must be a distance: finite and not negative.
+fn check_position_error(metres: f64) -> Result<(), MessageError> {
+    if metres.is_finite() && metres >= 0.0 {
+        Ok(())
+    } else {
+        Err(MessageError::PositionError { value: metres })
     }
 }
 

@@ -22,6 +22,8 @@ pub enum MessageError {
     },
     #[error("{field} holds a non-finite value at index {index}")]
     NonFinite { field: &'static str, index: usize },
+    #[error("position_error_m is {value}: a bound on a distance must be finite and >= 0")]
+    PositionError { value: f64 },
     #[error("invalid {field}: {reason}")]
     Invalid { field: &'static str, reason: String },
 }

@@ -8,6 +8,7 @@ use shroud_core::ingest::benewake::{BenewakeConfig, BenewakeDriver, BenewakeMode
 use shroud_core::ingest::device::DeviceDriver;
 use shroud_core::ingest::rplidar::{MotorControl, RplidarConfig, RplidarDriver, ScanMode};
 use shroud_core::ingest::scip::{Link, ScanCommand, ScipConfig, ScipDriver};
+use std::time::Duration;
 
 /// The protocol the device on the port speaks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -135,6 +136,14 @@ pub struct DeviceArgs {
     /// Benewake: save the settings in the device (survives power cycles).
     #[arg(long)]
     pub save: bool,
+    /// Benewake: the longest (seconds) a reading may wait where this host
+    /// cannot see it, between its measurement and its bytes being readable
+    /// (device processing, a USB adapter's buffering; an FTDI adapter holds
+    /// bytes up to 16 ms by default). The frames carry no device time, so
+    /// each reading is dated by the reads around it; this widens every
+    /// reading's time bound. Default 0.005.
+    #[arg(long)]
+    pub link_latency: Option<f64>,
 }
 
 impl DeviceArgs {
@@ -146,6 +155,19 @@ impl DeviceArgs {
             DeviceKind::Hokuyo | DeviceKind::Rplidar | DeviceKind::Tfmini => 115_200,
         };
         self.baud.unwrap_or(default)
+    }
+
+    /// How long the port's reads block: a Benewake's frames carry no time,
+    /// so they are dated by the reads around them, and frequent reads keep
+    /// that interval short (1 ms: about a thousand cheap reads a second);
+    /// the other devices send their own time.
+    pub fn port_read_timeout(&self) -> Duration {
+        match self.device {
+            DeviceKind::Tfmini => Duration::from_millis(1),
+            DeviceKind::Shroud | DeviceKind::Hokuyo | DeviceKind::Rplidar => {
+                Duration::from_millis(20)
+            }
+        }
     }
 
     /// Options given that the chosen device does not read: a named error.
@@ -179,6 +201,7 @@ impl DeviceArgs {
             ("--frame-rate", self.frame_rate.is_some()),
             ("--millimetres", self.millimetres),
             ("--save", self.save),
+            ("--link-latency", self.link_latency.is_some()),
         ];
         for (flag, given) in tfmini_only {
             if given && self.device != DeviceKind::Tfmini {
@@ -194,6 +217,12 @@ impl DeviceArgs {
         if let (Some(start), Some(end)) = (self.start_step, self.end_step) {
             if start > end {
                 bail!("--start-step {start} is after --end-step {end}");
+            }
+        }
+        if let Some(latency) = self.link_latency {
+            // NaN is in no range, so it is refused too.
+            if !(0.0..=10.0).contains(&latency) {
+                bail!("--link-latency must be between 0 and 10 seconds, not {latency}");
             }
         }
         let commanded = self.frame_rate.is_some() || self.millimetres || self.save;
@@ -231,6 +260,10 @@ impl DeviceArgs {
                     DistanceUnit::Centimetre
                 },
                 save: self.save,
+                link_latency: self
+                    .link_latency
+                    .map(Duration::from_secs_f64)
+                    .unwrap_or(BenewakeConfig::default().link_latency),
                 ..BenewakeConfig::default()
             }))),
         })

@@ -7,6 +7,7 @@ use clap::{Args, ValueEnum};
 use glam::DVec3;
 use shroud_core::ingest::assembly::{
     AssemblyConfig, CloudWindow, MountMotion, MountPose, MovingMount, SweepProfile,
+    DEFAULT_MAX_POSITION_ERROR_M,
 };
 
 /// The turning axis of a moving mount, in the mount's base frame.
@@ -96,6 +97,16 @@ pub struct CloudArgs {
     /// Points a cloud may hold before it is published early.
     #[arg(long, default_value_t = 2_000_000)]
     pub max_cloud_points: usize,
+    /// The largest position error (metres) a placed reading may have. A
+    /// reading of a device that sends no time (a Benewake) is placed at the
+    /// best estimate of when it was measured; the uncertainty of that time,
+    /// through the mount's motion, bounds how far the point can be from
+    /// where it was measured. Readings with a larger bound are dropped
+    /// (counted as `readings_late_beyond_bound`), as are those whose time
+    /// has no bound (`readings_late_unbounded`). Each cloud states the
+    /// largest bound of its points (`position_error_m`).
+    #[arg(long, default_value_t = DEFAULT_MAX_POSITION_ERROR_M)]
+    pub max_position_error: f64,
 }
 
 impl CloudArgs {
@@ -110,6 +121,7 @@ impl CloudArgs {
         Ok(AssemblyConfig {
             window,
             max_points: self.max_cloud_points,
+            max_position_error_m: self.max_position_error,
             ..AssemblyConfig::fixed(mount)
         })
     }

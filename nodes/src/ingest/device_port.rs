@@ -8,7 +8,7 @@ use super::backoff::{Backoff, BackoffConfig};
 use super::ReaderError;
 use crate::transport::{monotonic_ns, unix_ns};
 use serialport::{ClearBuffer, SerialPort};
-use shroud_core::ingest::device::{DeviceDriver, DeviceStats, DriverOutput, HostTime};
+use shroud_core::ingest::device::{DeviceDriver, DeviceStats, DriverOutput, HostTime, ReadWindow};
 use std::io;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
@@ -20,7 +20,9 @@ pub struct DevicePortConfig {
     pub path: String,
     /// The rate the port opens at (the driver may change it).
     pub baud: u32,
-    /// Longest a read blocks; the driver is polled at least this often.
+    /// Longest a read blocks; the driver is polled at least this often. A
+    /// device that sends no time of its own is dated by the reads around
+    /// its bytes ([`ReadWindow`]): the shorter this, the tighter.
     pub read_timeout: Duration,
     pub backoff: BackoffConfig,
     /// How long the port stays open after the driver's shutdown bytes.
@@ -162,14 +164,26 @@ impl Session<'_> {
             return ended;
         }
         let mut buf = vec![0u8; 8192];
+        // When the previous read was called: it took every byte readable
+        // then, so the next read's bytes became readable later. Unknown
+        // before the first read, and after a read that filled the buffer.
+        let mut previous_call: Option<HostTime> = None;
         loop {
             if stop.load(Ordering::Relaxed) {
                 return Ended::Stopped;
             }
+            let called = host_now();
             match self.port.read(&mut buf) {
                 Ok(0) => return Ended::Lost(io::ErrorKind::UnexpectedEof.into()),
-                Ok(n) => self.driver.receive(&buf[..n], host_now(), &mut outputs),
-                Err(e) if is_quiet(&e) => {}
+                Ok(n) => {
+                    let window = ReadWindow {
+                        after: previous_call,
+                        returned: host_now(),
+                    };
+                    self.driver.receive_read(&buf[..n], window, &mut outputs);
+                    previous_call = (n < buf.len()).then_some(called);
+                }
+                Err(e) if is_quiet(&e) => previous_call = Some(called),
                 Err(e) => return Ended::Lost(e),
             }
             self.driver.poll(host_now(), &mut outputs);

@@ -10,7 +10,10 @@ use crate::args::CloudArgs;
 use crate::ingest::{host_now, run_device, DevicePortConfig, PortStats};
 use crate::transport::unix_ns;
 use anyhow::Result;
-use shroud_core::ingest::assembly::{AssembledCloud, CloudAssembler, MountMotion};
+use shroud_core::ingest::assembly::{
+    AssembledCloud, CloudAssembler, MountMotion, READINGS_LATE_BEYOND_BOUND,
+    READINGS_LATE_UNBOUNDED,
+};
 use shroud_core::ingest::device::{
     DeviceDriver, DeviceState, DeviceStats, DriverOutput, RangeScan,
 };
@@ -162,6 +165,10 @@ fn assemble(
             .set_counter("mount_angle_missing", s.mount_angle_missing);
         ctx.metrics
             .set_counter("joint_samples_refused", s.joint_samples_refused);
+        ctx.metrics
+            .set_counter(READINGS_LATE_UNBOUNDED, s.readings_late_unbounded);
+        ctx.metrics
+            .set_counter(READINGS_LATE_BEYOND_BOUND, s.readings_late_beyond_bound);
     }
     let unpublished = assembler.pending_points();
     if unpublished > 0 {
@@ -175,7 +182,7 @@ fn assemble(
 /// Publishes a cloud, aged from the arrival of its first scan's last byte.
 fn publish(ctx: &NodeContext, out: &mut CloudOut<'_>, cloud: &AssembledCloud) {
     let first = cloud.first_received.monotonic_ns;
-    out.publish(&cloud.cloud, || {
+    out.publish_bounded(&cloud.cloud, cloud.position_error_m, || {
         host_now().monotonic_ns.saturating_sub(first)
     });
     let since_last = host_now().since(cloud.last_received);
@@ -183,6 +190,8 @@ fn publish(ctx: &NodeContext, out: &mut CloudOut<'_>, cloud: &AssembledCloud) {
         .set("last_byte_to_publish_ms", since_last as f64 * 1e-6);
     ctx.metrics
         .set("cloud_points", cloud.cloud.points.len() as f64);
+    ctx.metrics
+        .set("cloud_position_error_m", cloud.position_error_m);
 }
 
 /// Subscribes to the joint states carrying the mount's angle. Their stamps

@@ -55,12 +55,24 @@ impl<'a> CloudOut<'a> {
     /// Publishes `scan` (points in the robot's frame), `pipeline_ns` after
     /// its data reached this host.
     pub fn publish(&mut self, scan: &Scan, since_receipt: impl Fn() -> u64) {
+        self.publish_bounded(scan, 0.0, since_receipt);
+    }
+
+    /// [`Self::publish`] stating how far its points may be from where they
+    /// were measured (`position_error_m`, metres).
+    pub fn publish_bounded(
+        &mut self,
+        scan: &Scan,
+        position_error_m: f64,
+        since_receipt: impl Fn() -> u64,
+    ) {
         if let Err(skew) = check_stamp_skew(scan.stamp_ns, unix_ns(), self.max_skew_ns) {
             self.ctx.metrics.add("clock_skew", 1);
             tracing::warn!(device = %self.device, "device {skew}");
         }
         let published = scan
             .to_view(self.sequence, &self.source, SensorPose::default())
+            .and_then(|view| view.with_position_error_m(position_error_m))
             .map(|view| view.with_pipeline_ns(since_receipt()))
             .and_then(|view| self.writer.encode(&view))
             .map_err(anyhow::Error::from)

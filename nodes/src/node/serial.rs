@@ -58,7 +58,10 @@ pub fn run_serial(args: SerialNodeArgs) -> Result<()> {
             })
         }
         Some(mut driver) => {
-            let port = DevicePortConfig::new(&args.port, baud);
+            let port = DevicePortConfig {
+                read_timeout: args.device.port_read_timeout(),
+                ..DevicePortConfig::new(&args.port, baud)
+            };
             run_node(&common, "serial", move |ctx| {
                 run_device_clouds(
                     &ctx,

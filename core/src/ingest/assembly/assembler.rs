@@ -3,10 +3,11 @@
 
 use super::error::AssemblyError;
 use super::joint_track::JointTrack;
+use super::lateness::{stamp_uncertainty_ns, turn_displacement_m};
 use super::motion::{MountMotion, MovingMount};
 use super::pose::MountPose;
 use super::window::CloudWindow;
-use crate::ingest::device::{HostTime, RangeScan};
+use crate::ingest::device::{HostTime, RangeScan, StampBound};
 use crate::ingest::Scan;
 use glam::DVec3;
 use std::collections::VecDeque;
@@ -15,6 +16,18 @@ use std::collections::VecDeque;
 /// a second of the fastest lidar here (a UTM-30LX sends 43 000 rays a
 /// second), so the wait is bounded by `max_joint_wait_ns`, not by this.
 const MAX_WAITING_RAYS: usize = 65_536;
+
+/// The largest position error (metres) a placed reading may have, unless
+/// configured otherwise: a quarter metre, the order of a robot's safety
+/// margin; a reading less sure of its place is dropped.
+pub const DEFAULT_MAX_POSITION_ERROR_M: f64 = 0.25;
+
+/// Status counter: valid readings dropped because their time has no bound
+/// ([`StampBound::Unbounded`], or joint samples that do not cover it).
+pub const READINGS_LATE_UNBOUNDED: &str = "readings_late_unbounded";
+/// Status counter: valid readings dropped because their position error
+/// bound exceeds [`AssemblyConfig::max_position_error_m`].
+pub const READINGS_LATE_BEYOND_BOUND: &str = "readings_late_beyond_bound";
 
 /// How scans become clouds.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,6 +41,10 @@ pub struct AssemblyConfig {
     /// Longest a scan waits (on the monotonic clock) for joint samples
     /// covering its last ray before it is dropped.
     pub max_joint_wait_ns: u64,
+    /// A reading whose position error bound (from the uncertainty of its
+    /// time, [`StampBound`], and the mount's motion) exceeds this many
+    /// metres is dropped and counted ([`READINGS_LATE_BEYOND_BOUND`]).
+    pub max_position_error_m: f64,
 }
 
 impl AssemblyConfig {
@@ -39,6 +56,7 @@ impl AssemblyConfig {
             max_points: 4_000_000,
             max_joint_gap_ns: 200_000_000,
             max_joint_wait_ns: 500_000_000,
+            max_position_error_m: DEFAULT_MAX_POSITION_ERROR_M,
         }
     }
 }
@@ -56,6 +74,9 @@ pub struct AssembledCloud {
     pub last_received: HostTime,
     /// Scans that contributed rays.
     pub scans: u32,
+    /// The largest position error bound of its points, metres (0 when every
+    /// point's time was taken as exact).
+    pub position_error_m: f64,
 }
 
 /// What the assembler counted.
@@ -71,6 +92,12 @@ pub struct AssemblyStats {
     pub mount_angle_missing: u64,
     /// Joint samples refused (non-finite, or not later than the last).
     pub joint_samples_refused: u64,
+    /// Valid readings dropped: their time has no bound
+    /// ([`READINGS_LATE_UNBOUNDED`]).
+    pub readings_late_unbounded: u64,
+    /// Valid readings dropped: their position error bound exceeds the
+    /// configured maximum ([`READINGS_LATE_BEYOND_BOUND`]).
+    pub readings_late_beyond_bound: u64,
 }
 
 /// The cloud being filled.
@@ -85,6 +112,7 @@ struct Partial {
     last_received: HostTime,
     scans: u32,
     last_scan: Option<u64>,
+    position_error_m: f64,
 }
 
 /// Turns range scans into clouds ([`AssemblyConfig`]).
@@ -116,6 +144,12 @@ impl CloudAssembler {
         }
         if config.max_points == 0 {
             return Err(AssemblyError::Invalid("max_points must be positive".into()));
+        }
+        if !(config.max_position_error_m > 0.0) {
+            return Err(AssemblyError::Invalid(format!(
+                "the largest position error {} m must be positive",
+                config.max_position_error_m
+            )));
         }
         Ok(Self {
             track: JointTrack::new(config.max_joint_gap_ns),
@@ -233,8 +267,15 @@ impl CloudAssembler {
         if !self.needs_joints() {
             return Coverage::Known;
         }
-        let first = scan.stamp_ns;
-        let last = first.saturating_add(scan.rays.last().map_or(0, |r| r.offset_ns as u64));
+        // A reading of uncertain time needs the angle over all of its bound.
+        let (first, last) = match scan.stamp_bound {
+            StampBound::Within {
+                earliest_ns,
+                latest_ns,
+            } => (scan.stamp_ns.min(earliest_ns), scan.stamp_ns.max(latest_ns)),
+            _ => (scan.stamp_ns, scan.stamp_ns),
+        };
+        let last = last.saturating_add(scan.rays.last().map_or(0, |r| r.offset_ns as u64));
         match (self.track.earliest_ns(), self.track.latest_ns()) {
             (Some(early), Some(_)) if early > first => Coverage::Lost,
             (Some(_), Some(late)) if late >= last => Coverage::Known,
@@ -283,9 +324,19 @@ impl CloudAssembler {
                 _ => self.config.mount.pose_at_angle(angle),
             };
             pose = Some((angle, at));
-            let point = at.apply(local).as_vec3();
+            let placed = at.apply(local);
+            let point = placed.as_vec3();
             if !point.is_finite() {
                 self.stats.invalid_rays += 1;
+                continue;
+            }
+            let Some(turn) = self.angle_uncertainty(scan.stamp_bound, ray.offset_ns, time) else {
+                self.stats.readings_late_unbounded += 1;
+                continue;
+            };
+            let error = turn_displacement_m(self.lever_m(placed), turn);
+            if !(error <= self.config.max_position_error_m) {
+                self.stats.readings_late_beyond_bound += 1;
                 continue;
             }
             self.add_point(
@@ -296,6 +347,7 @@ impl CloudAssembler {
                 time,
                 index,
                 scan,
+                error,
             );
             if self.partial.points.len() >= self.config.max_points {
                 self.complete(out);
@@ -318,8 +370,10 @@ impl CloudAssembler {
         time: u64,
         index: u64,
         scan: &RangeScan,
+        position_error_m: f64,
     ) {
         let p = &mut self.partial;
+        p.position_error_m = p.position_error_m.max(position_error_m);
         if p.key.is_none() {
             p.key = Some(key);
             p.all_intensity = true;
@@ -354,7 +408,48 @@ impl CloudAssembler {
             first_received,
             last_received: p.last_received,
             scans: p.scans,
+            position_error_m: p.position_error_m,
         });
+    }
+
+    /// How far (radians) the mount may have turned between the time a ray
+    /// is placed at and the time it was measured, given its scan's
+    /// [`StampBound`]; `None` when that is unknown.
+    fn angle_uncertainty(&self, bound: StampBound, offset_ns: u32, time: u64) -> Option<f64> {
+        let bound = match bound {
+            StampBound::Within {
+                earliest_ns,
+                latest_ns,
+            } => StampBound::Within {
+                earliest_ns: earliest_ns.saturating_add(offset_ns as u64),
+                latest_ns: latest_ns.saturating_add(offset_ns as u64),
+            },
+            other => other,
+        };
+        let dt_ns = stamp_uncertainty_ns(bound, time)?;
+        match (&self.config.mount.motion, bound) {
+            (MountMotion::Fixed, _) => Some(0.0),
+            (_, StampBound::Untracked) => Some(0.0),
+            // The profile's speed bound over the whole uncertainty.
+            (MountMotion::Profile(p), _) => Some(p.max_speed() * dt_ns as f64 * 1e-9),
+            // The joint's observed motion over the ray's time bound.
+            (
+                MountMotion::Joint { .. },
+                StampBound::Within {
+                    earliest_ns,
+                    latest_ns,
+                },
+            ) => self.track.max_deviation(time, earliest_ns, latest_ns),
+            (MountMotion::Joint { .. }, StampBound::Unbounded) => None,
+        }
+    }
+
+    /// Distance (m) of a placed point from the mount's turning axis: the
+    /// radius of the circle an error in the mount's angle moves it along.
+    fn lever_m(&self, point: glam::DVec3) -> f64 {
+        let base = &self.config.mount.base;
+        let axis = base.rotation * self.config.mount.axis;
+        (point - base.translation).cross(axis).length()
     }
 }
 

@@ -110,4 +110,34 @@ impl JointTrack {
         let f = (unix_ns - a.unix_ns) as f64 / (b.unix_ns - a.unix_ns) as f64;
         Some((a.angle + f * (b.angle - a.angle), a.sweep))
     }
+
+    /// The largest difference between the angle at `at` and any angle over
+    /// `[from, to]` (the track is linear between samples, so the extremes
+    /// are at the ends or at samples); `None` unless the samples cover
+    /// both ends.
+    pub fn max_deviation(&self, at: u64, from: u64, to: u64) -> Option<f64> {
+        let (reference, _) = self.at(at)?;
+        let (start, _) = self.at(from)?;
+        let (end, _) = self.at(to)?;
+        let first = self.samples.partition_point(|s| s.unix_ns <= from);
+        let inside: Vec<&Sample> = self
+            .samples
+            .range(first..)
+            .take_while(|s| s.unix_ns < to)
+            .collect();
+        // No gap too long to interpolate across between the ends.
+        let mut previous = from;
+        for s in &inside {
+            if s.unix_ns - previous > self.max_gap_ns {
+                return None;
+            }
+            previous = s.unix_ns;
+        }
+        let deviation = [start, end]
+            .into_iter()
+            .chain(inside.iter().map(|s| s.angle))
+            .map(|a| (a - reference).abs())
+            .fold(0.0, f64::max);
+        Some(deviation)
+    }
 }

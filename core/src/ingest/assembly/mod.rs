@@ -4,13 +4,16 @@
 //! mount (fixed, or turning about one axis: a tilting or rotating unit whose
 //! angle comes from a configured sweep profile or from joint-state samples),
 //! each ray at its own time, and gathers the points into one cloud per sweep,
-//! per N scans or per time window.
+//! per N scans or per time window. A reading whose time the device did not
+//! send is placed at the best estimate of it, and carries a bound on its
+//! position error ([`lateness`]).
 //!
 //! Frames follow REP-103 (x forward, y left, z up, angles counter-clockwise).
 
 mod assembler;
 mod error;
 mod joint_track;
+pub mod lateness;
 mod motion;
 mod pose;
 mod profile;
@@ -19,7 +22,10 @@ mod window;
 #[cfg(test)]
 mod tests;
 
-pub use assembler::{AssembledCloud, AssemblyConfig, AssemblyStats, CloudAssembler};
+pub use assembler::{
+    AssembledCloud, AssemblyConfig, AssemblyStats, CloudAssembler, DEFAULT_MAX_POSITION_ERROR_M,
+    READINGS_LATE_BEYOND_BOUND, READINGS_LATE_UNBOUNDED,
+};
 pub use error::AssemblyError;
 pub use joint_track::JointTrack;
 pub use motion::{MountMotion, MovingMount};

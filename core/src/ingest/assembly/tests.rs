@@ -1,7 +1,7 @@
 //! Tests of the scan-to-cloud assembly: poses, profiles, joint tracks, windows.
 
 use super::*;
-use crate::ingest::device::{HostTime, RangeScan, Ray};
+use crate::ingest::device::{HostTime, RangeScan, Ray, StampBound};
 use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -23,6 +23,7 @@ fn scan(sequence: u32, stamp_ns: u64, rays: Vec<Ray>) -> RangeScan {
         stamp_ns,
         received: HostTime::new(stamp_ns - T0 + 1_000, stamp_ns),
         rays,
+        stamp_bound: StampBound::Untracked,
     }
 }
 
@@ -325,4 +326,137 @@ fn a_flush_completes_the_cloud_once_the_scans_waiting_at_it_are_through() {
     assembler.flush(&mut out);
     assert_eq!(out.len(), 2);
     assert_eq!(out[1].scans, 1);
+}
+
+/// A scan of one ray whose time is known only within `[earliest, latest]`,
+/// stamped at the middle.
+fn uncertain(sequence: u32, earliest: u64, latest: u64, range: f32) -> RangeScan {
+    RangeScan {
+        stamp_bound: StampBound::Within {
+            earliest_ns: earliest,
+            latest_ns: latest,
+        },
+        ..scan(
+            sequence,
+            lateness::best_estimate_ns(earliest, latest),
+            vec![ray(0.0, range, 0)],
+        )
+    }
+}
+
+/// A unit 1 m up panning about z, the beam 50° down (as the device tests).
+fn panning(motion: MountMotion) -> MovingMount {
+    MovingMount {
+        base: "0,0,1,0,0,0".parse().unwrap(),
+        axis: DVec3::Z,
+        sensor: "0,0,0,0,50,0".parse().unwrap(),
+        motion,
+    }
+}
+
+#[test]
+fn a_reading_of_uncertain_time_carries_its_position_error_into_the_cloud() {
+    let mount = panning(MountMotion::Profile("rotate:1".parse().unwrap()));
+    let mut assembler = CloudAssembler::new(AssemblyConfig::fixed(mount)).unwrap();
+    let mut out = Vec::new();
+    // ±2 ms at 2π rad/s, 2 m along a beam 50° down: 2 m · cos 50° from the
+    // axis, turned by up to 4π/1000 rad.
+    assembler.push_scan(uncertain(0, T0, T0 + 4 * MS, 2.0), &mut out);
+    let lever = 2.0 * 50f64.to_radians().cos();
+    let expected = lateness::turn_displacement_m(lever, TAU * 0.002);
+    assert_eq!(out.len(), 1);
+    assert!(
+        (out[0].position_error_m - expected).abs() < 1e-6,
+        "{} vs {expected}",
+        out[0].position_error_m
+    );
+    assert!(expected > 0.015 && expected < 0.017, "{expected}");
+    // A reading taken as exact adds nothing.
+    assembler.push_scan(scan(1, T0, vec![ray(0.0, 2.0, 0)]), &mut out);
+    assert_eq!(out[1].position_error_m, 0.0);
+    // 100 ms either way is over 0.25 m off: dropped, counted.
+    assembler.push_scan(uncertain(2, T0, T0 + 200 * MS, 2.0), &mut out);
+    assert_eq!(out.len(), 2);
+    assert_eq!(assembler.stats().readings_late_beyond_bound, 1);
+    // No bound at all: dropped, counted; an invalid reading is not counted.
+    let mut lost = scan(3, T0, vec![ray(0.0, 2.0, 0), ray(0.0, f32::NAN, 0)]);
+    lost.stamp_bound = StampBound::Unbounded;
+    assembler.push_scan(lost, &mut out);
+    assert_eq!(out.len(), 2);
+    assert_eq!(assembler.stats().readings_late_unbounded, 1);
+    assert_eq!(assembler.stats().invalid_rays, 1);
+    // A fixed mount does not turn: lateness moves nothing.
+    let fixed = MovingMount::fixed(MountPose::default());
+    let mut still = CloudAssembler::new(AssemblyConfig::fixed(fixed)).unwrap();
+    still.push_scan(uncertain(0, T0, T0 + 900 * MS, 2.0), &mut out);
+    assert_eq!(out[2].position_error_m, 0.0);
+    // The maximum must be a positive number.
+    let bad = AssemblyConfig {
+        max_position_error_m: f64::NAN,
+        ..AssemblyConfig::fixed(MovingMount::fixed(MountPose::default()))
+    };
+    assert!(CloudAssembler::new(bad).is_err());
+}
+
+#[test]
+fn a_joint_mount_bounds_the_turn_by_the_samples_over_the_readings_bound() {
+    let mut assembler = CloudAssembler::new(AssemblyConfig::fixed(panning(MountMotion::Joint {
+        name: "pan".into(),
+    })))
+    .unwrap();
+    let mut out = Vec::new();
+    // Still, then turning 0.1 rad in 10 ms, then still.
+    assembler.push_joint(T0, 0.0, &mut out);
+    assembler.push_joint(T0 + 10 * MS, 0.0, &mut out);
+    assembler.push_scan(uncertain(0, T0 + 8 * MS, T0 + 16 * MS, 2.0), &mut out);
+    assert!(out.is_empty(), "waits for samples up to the bound's end");
+    assembler.push_joint(T0 + 20 * MS, 0.1, &mut out);
+    assembler.push_joint(T0 + 30 * MS, 0.1, &mut out);
+    assert_eq!(out.len(), 1);
+    // Placed at 12 ms (0.02 rad); the joint was at 0 at 8 ms and 0.06 at
+    // 16 ms: up to 0.04 rad off.
+    let lever = 2.0 * 50f64.to_radians().cos();
+    let expected = lateness::turn_displacement_m(lever, 0.04);
+    assert!(
+        (out[0].position_error_m - expected).abs() < 1e-6,
+        "{} vs {expected}",
+        out[0].position_error_m
+    );
+}
+
+proptest::proptest! {
+    /// Wherever inside its bound a reading was really measured, the point
+    /// the assembler placed is within the cloud's stated position error of
+    /// where it really is.
+    #[test]
+    fn every_point_lies_within_the_clouds_stated_error_of_the_truth(
+        profile in proptest::sample::select(vec!["rotate:1", "sine:60:0.7", "triangle:30:2:10"]),
+        offset_ms in 0u64..4_000,
+        width_us in 0u64..20_000,
+        truth_at in 0.0f64..=1.0,
+        range in 0.2f32..10.0,
+        sensor_yaw in -90.0f64..90.0,
+    ) {
+        let motion = MountMotion::Profile(profile.parse().unwrap());
+        let mut mount = panning(motion);
+        mount.sensor = MountPose::from_xyz_rpy([0.1, 0.05, 0.0], [0.0, 0.7, sensor_yaw.to_radians()]);
+        let config = AssemblyConfig {
+            max_position_error_m: f64::INFINITY,
+            ..AssemblyConfig::fixed(mount.clone())
+        };
+        let mut assembler = CloudAssembler::new(config).unwrap();
+        let earliest = T0 + offset_ms * MS;
+        let latest = earliest + width_us * 1_000;
+        let mut out = Vec::new();
+        assembler.push_scan(uncertain(0, earliest, latest, range), &mut out);
+        let truth_ns = earliest + ((latest - earliest) as f64 * truth_at) as u64;
+        let (angle, _) = mount.angle_at(truth_ns, &JointTrack::new(0)).unwrap();
+        let real = mount.pose_at_angle(angle).apply(DVec3::new(range as f64, 0.0, 0.0));
+        let placed = DVec3::from_array(out[0].cloud.points[0].map(f64::from));
+        let stated = out[0].position_error_m;
+        proptest::prop_assert!(stated.is_finite() && stated >= 0.0);
+        // f32 points: a few micrometres of rounding.
+        proptest::prop_assert!((placed - real).length() <= stated + 1e-5,
+            "{placed} is {} from {real}, stated {stated}", (placed - real).length());
+    }
 }

@@ -70,6 +70,12 @@ pub struct BenewakeConfig {
     /// data frame (in trigger mode, at least 2 × `reply_timeout`). Default
     /// 300 ms.
     pub stream_timeout: Duration,
+    /// The longest a frame may wait where the host cannot see it: from its
+    /// measurement to its first byte on the wire (the manuals state no such
+    /// latency), plus from its last byte's arrival to its being readable (a
+    /// USB-serial adapter's buffering: an FTDI adapter's latency timer is
+    /// 16 ms by default). It widens every reading's time bound. Default 5 ms.
+    pub link_latency: Duration,
 }
 
 impl Default for BenewakeConfig {
@@ -82,6 +88,7 @@ impl Default for BenewakeConfig {
             save: false,
             reply_timeout: Duration::from_millis(500),
             stream_timeout: Duration::from_millis(300),
+            link_latency: Duration::from_millis(5),
         }
     }
 }

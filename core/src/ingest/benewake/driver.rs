@@ -13,8 +13,11 @@ use super::identity::identity;
 use super::reading::Reading;
 use super::reply::{FirmwareVersion, Reply};
 use super::timing::{duration_ns, frame_transmission_ns, stream_timeout_ns};
+use crate::ingest::assembly::lateness::DEFAULT_PERIOD_TOLERANCE;
+use crate::ingest::assembly::lateness::{best_estimate_ns, Behind, FrameTiming};
 use crate::ingest::device::{
-    DeviceDriver, DeviceState, DeviceStats, DriverOutput, HostTime, RangeScan,
+    DeviceDriver, DeviceState, DeviceStats, DriverOutput, HostTime, RangeScan, ReadWindow,
+    StampBound,
 };
 
 /// A command sent and not yet answered.
@@ -187,41 +190,68 @@ impl BenewakeDriver {
         self.session.trigger_sent_ns = Some(now.monotonic_ns);
     }
 
-    fn on_packet(&mut self, decoded: Decoded, now: HostTime, out: &mut Vec<DriverOutput>) {
+    fn on_packet(
+        &mut self,
+        decoded: Decoded,
+        now: HostTime,
+        bound: StampBound,
+        out: &mut Vec<DriverOutput>,
+    ) {
         match decoded {
             Err(error) => self.stats.count(error.kind()),
-            Ok(Packet::Data(frame)) => self.on_frame(frame, now, out),
+            Ok(Packet::Data(frame)) => self.on_frame(frame, now, bound, out),
             Ok(Packet::Reply(frame)) => self.on_reply(frame.reply(), now, out),
         }
     }
 
-    fn on_frame(&mut self, frame: DataFrame, now: HostTime, out: &mut Vec<DriverOutput>) {
+    fn on_frame(
+        &mut self,
+        frame: DataFrame,
+        now: HostTime,
+        bound: StampBound,
+        out: &mut Vec<DriverOutput>,
+    ) {
         self.session.frames_seen = self.session.frames_seen.saturating_add(1);
         self.session.last_frame_ns = now.monotonic_ns;
         let listen_only = !self.config.model.has_commands();
         match self.state {
-            DeviceState::Streaming => self.deliver(frame, now, out),
+            DeviceState::Streaming => self.deliver(frame, now, bound, out),
             DeviceState::Connecting if listen_only => {
                 self.start_streaming(now, out);
-                self.deliver(frame, now, out);
+                self.deliver(frame, now, bound, out);
             }
             _ => self.stats.note("frame_while_configuring"),
         }
     }
 
-    fn deliver(&mut self, frame: DataFrame, now: HostTime, out: &mut Vec<DriverOutput>) {
+    /// `now` is when the frame's last byte is taken to have arrived;
+    /// `bound`, when the frame was measured, if the read it came in says.
+    fn deliver(
+        &mut self,
+        frame: DataFrame,
+        now: HostTime,
+        bound: StampBound,
+        out: &mut Vec<DriverOutput>,
+    ) {
         let reading = Reading::classify(frame, self.config.model, self.config.effective_unit());
         if let Some(kind) = reading.validity.counter() {
             self.stats.count_invalid_reading(kind);
         }
-        let stamp_ns = now
-            .unix_ns
-            .saturating_sub(frame_transmission_ns(self.config.baud));
+        let stamp_ns = match bound {
+            StampBound::Within {
+                earliest_ns,
+                latest_ns,
+            } => best_estimate_ns(earliest_ns, latest_ns),
+            _ => now
+                .unix_ns
+                .saturating_sub(frame_transmission_ns(self.config.baud)),
+        };
         out.push(DriverOutput::Scan(RangeScan {
             sequence: self.sequence,
             stamp_ns,
             received: now,
             rays: vec![reading.ray()],
+            stamp_bound: bound,
         }));
         self.sequence = self.sequence.wrapping_add(1);
         self.stats.scans += 1;
@@ -286,6 +316,77 @@ impl BenewakeDriver {
         }
     }
 
+    /// What the host knows of the stream's timing: a frame's wire time, the
+    /// nominal period (the rate the device echoed, else the one configured,
+    /// else the model's factory rate; none in trigger mode), and the
+    /// configured hidden latency.
+    fn frame_timing(&self) -> FrameTiming {
+        let rate = match self.session.confirmed_rate.or(self.config.frame_rate) {
+            Some(hz) => hz,
+            None => self.config.model.factory_frame_rate_hz(),
+        };
+        FrameTiming {
+            wire_ns: frame_transmission_ns(self.config.baud),
+            period_ns: (rate > 0).then(|| 1_000_000_000 / u64::from(rate)),
+            period_tolerance: DEFAULT_PERIOD_TOLERANCE,
+            hidden_latency_ns: duration_ns(self.config.link_latency),
+        }
+    }
+
+    /// Decodes `bytes` read by a read returning at `now`; with the read's
+    /// `window`, each frame's measurement time is bounded.
+    fn receive_bytes(
+        &mut self,
+        bytes: &[u8],
+        now: HostTime,
+        window: Option<ReadWindow>,
+        out: &mut Vec<DriverOutput>,
+    ) {
+        self.stats.bytes = self.stats.bytes.saturating_add(bytes.len() as u64);
+        if self.state == DeviceState::Disconnected {
+            return;
+        }
+        let mut decoded = std::mem::take(&mut self.decoded);
+        self.decoder.feed(bytes, &mut decoded);
+        let timing = self.frame_timing();
+        // Several frames in one read arrived one after another on the wire:
+        // each earlier one is back-dated by the frames that followed it (the
+        // last ends about when the read returned).
+        let mut behind = Behind {
+            frames: decoded
+                .iter()
+                .filter(|d| matches!(d, Ok(Packet::Data(_))))
+                .count() as u64,
+            // A malformed frame (a bad sum) was a frame slot on the wire.
+            slots: decoded
+                .iter()
+                .filter(|d| !matches!(d, Ok(Packet::Reply(_))))
+                .count() as u64,
+        };
+        let per_frame = frame_transmission_ns(self.config.baud);
+        for item in decoded.drain(..) {
+            if self.state == DeviceState::Disconnected {
+                break;
+            }
+            let mut at = now;
+            let mut bound = StampBound::Untracked;
+            if !matches!(item, Ok(Packet::Reply(_))) {
+                behind.slots = behind.slots.saturating_sub(1);
+            }
+            if matches!(item, Ok(Packet::Data(_))) {
+                behind.frames = behind.frames.saturating_sub(1);
+                let back = behind.frames.saturating_mul(per_frame);
+                at.unix_ns = at.unix_ns.saturating_sub(back);
+                at.monotonic_ns = at.monotonic_ns.saturating_sub(back);
+                if let Some(window) = window {
+                    bound = timing.interval(window, behind);
+                }
+            }
+            self.on_packet(item, at, bound, out);
+        }
+        self.decoded = decoded;
+    }
+
     /// Trigger mode: a new trigger once the last one's frame came, or again
     /// when it went unanswered for `reply_timeout`.
     fn poll_trigger(&mut self, now: HostTime, out: &mut Vec<DriverOutput>) {
@@ -326,35 +427,15 @@ impl DeviceDriver for BenewakeDriver {
     }
 
     fn receive(&mut self, bytes: &[u8], now: HostTime, out: &mut Vec<DriverOutput>) {
-        self.stats.bytes = self.stats.bytes.saturating_add(bytes.len() as u64);
-        if self.state == DeviceState::Disconnected {
-            return;
-        }
-        let mut decoded = std::mem::take(&mut self.decoded);
-        self.decoder.feed(bytes, &mut decoded);
-        // Several frames in one read arrived one after another on the wire:
-        // each earlier one is back-dated by the frames that followed it (the
-        // last ends about when the read returned).
-        let frames = decoded
-            .iter()
-            .filter(|d| matches!(d, Ok(Packet::Data(_))))
-            .count() as u64;
-        let mut later = frames;
-        let per_frame = frame_transmission_ns(self.config.baud);
-        for item in decoded.drain(..) {
-            if self.state == DeviceState::Disconnected {
-                break;
-            }
-            let mut at = now;
-            if matches!(item, Ok(Packet::Data(_))) {
-                later = later.saturating_sub(1);
-                let back = later.saturating_mul(per_frame);
-                at.unix_ns = at.unix_ns.saturating_sub(back);
-                at.monotonic_ns = at.monotonic_ns.saturating_sub(back);
-            }
-            self.on_packet(item, at, out);
-        }
-        self.decoded = decoded;
+        self.receive_bytes(bytes, now, None, out);
+    }
+
+    /// The frame carries no device time (the manuals' 9-byte data frame:
+    /// header, distance, strength, temperature, checksum): each
+    /// reading's time is bounded from the read ([`FrameTiming::interval`])
+    /// and stamped at the middle of its bound.
+    fn receive_read(&mut self, bytes: &[u8], window: ReadWindow, out: &mut Vec<DriverOutput>) {
+        self.receive_bytes(bytes, window.returned, Some(window), out);
     }
 
     fn poll(&mut self, now: HostTime, out: &mut Vec<DriverOutput>) {

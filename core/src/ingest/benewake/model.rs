@@ -62,6 +62,15 @@ impl BenewakeModel {
         }
     }
 
+    /// The output rate a device leaves the factory with, Hz: 100 for every
+    /// model (the manuals' frame-rate command, ID 0x03, "default 100 Hz";
+    /// TF-Luna manual §5.5; the original TFmini's datasheet gives 100 Hz).
+    /// A device whose saved rate differs must be configured with its rate,
+    /// or its readings' time bounds are wrong.
+    pub fn factory_frame_rate_hz(self) -> u16 {
+        100
+    }
+
     /// Whether the device takes `5A` command frames (all but the original
     /// TFmini, whose 2017 datasheet documents none).
     pub fn has_commands(self) -> bool {

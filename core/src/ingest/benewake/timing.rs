@@ -14,12 +14,16 @@ const SILENT_PERIODS: u64 = 10;
 /// Nanoseconds a 9-byte frame takes on an 8N1 line at `baud` (781 250 ns at
 /// 115200). 0 when `baud` is 0.
 ///
-/// This is the best the driver can do: the frame carries no device time, so a
-/// reading is stamped at the arrival of its last byte minus this (and minus
-/// this again for each frame that followed it in the same read). The device's
-/// own integration and averaging time before it sends (TF-Luna averages 500 Hz
-/// measurements down to its output rate, manual §5.5) is not modelled, nor is
-/// the host's read latency.
+/// The frame carries no device time. Told only when a read returned, the
+/// driver stamps a reading at the arrival of its last byte minus this (and
+/// minus this again for each frame that followed it in the same read). Told
+/// the read's window too ([`ReadWindow`](crate::ingest::device::ReadWindow)),
+/// it bounds the reading's time instead
+/// ([`FrameTiming`](crate::ingest::assembly::lateness::FrameTiming)): the
+/// host's read latency is then inside the bound, and the device's own
+/// integration and averaging time before it sends (TF-Luna averages 500 Hz
+/// measurements down to its output rate, manual §5.5) is part of the
+/// configured link latency.
 pub fn frame_transmission_ns(baud: u32) -> u64 {
     if baud == 0 {
         return 0;

@@ -3,7 +3,7 @@
 
 use super::range_scan::RangeScan;
 use super::stats::DeviceStats;
-use super::time::HostTime;
+use super::time::{HostTime, ReadWindow};
 
 /// What a driver asks of its port, or reports to its node, in order.
 #[derive(Debug, Clone, PartialEq)]
@@ -80,6 +80,14 @@ pub trait DeviceDriver: Send {
     fn connect(&mut self, now: HostTime, out: &mut Vec<DriverOutput>);
     /// Bytes read from the port; `now` is when the read returned.
     fn receive(&mut self, bytes: &[u8], now: HostTime, out: &mut Vec<DriverOutput>);
+    /// Bytes read from the port, with what the node knows of when they
+    /// became readable ([`ReadWindow`]). A driver of a device that sends no
+    /// time bounds its readings' lateness from it; the others need only
+    /// the return time, and this default passes that to
+    /// [`receive`](Self::receive).
+    fn receive_read(&mut self, bytes: &[u8], window: ReadWindow, out: &mut Vec<DriverOutput>) {
+        self.receive(bytes, window.returned, out);
+    }
     /// Time-driven decisions: reply timeouts, retries, a stalled stream.
     fn poll(&mut self, now: HostTime, out: &mut Vec<DriverOutput>);
     /// The node is stopping: what to send to leave the device quiet (laser

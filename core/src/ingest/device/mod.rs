@@ -14,6 +14,6 @@ mod stats;
 mod time;
 
 pub use driver::{DeviceDriver, DeviceState, DriverOutput};
-pub use range_scan::{RangeScan, Ray};
+pub use range_scan::{RangeScan, Ray, StampBound};
 pub use stats::DeviceStats;
-pub use time::HostTime;
+pub use time::{HostTime, ReadWindow};

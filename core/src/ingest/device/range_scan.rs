@@ -28,6 +28,25 @@ impl Ray {
     }
 }
 
+/// How well a scan's time is known, when the device sends none and the
+/// driver dates it from when its bytes were read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum StampBound {
+    /// The driver does not bound it: the device has a clock of its own, or
+    /// the driver was not told when the bytes were read. The stamp is taken
+    /// as exact.
+    #[default]
+    Untracked,
+    /// The first ray was measured within `[earliest_ns, latest_ns]` on the
+    /// host's wall clock; `stamp_ns` is the driver's best estimate inside.
+    Within { earliest_ns: u64, latest_ns: u64 },
+    /// What the host saw contradicts the device's timing model (more frames
+    /// than the device sends in the time the host could see them arrive),
+    /// or says nothing (no earlier read to compare with): the scan's time
+    /// has no bound.
+    Unbounded,
+}
+
 /// One complete scan (a revolution, a sweep of the field of view, or one
 /// reading of a single-beam sensor), as a driver delivers it. A scan that lost
 /// any of its bytes is never delivered: it is counted as an error instead.
@@ -47,6 +66,8 @@ pub struct RangeScan {
     pub received: HostTime,
     /// Rays in the order the device measured them.
     pub rays: Vec<Ray>,
+    /// How far `stamp_ns` can be from the time the first ray was measured.
+    pub stamp_bound: StampBound,
 }
 
 impl RangeScan {

@@ -35,3 +35,28 @@ impl HostTime {
         )
     }
 }
+
+/// When the bytes of one read of a port became readable on the host: what a
+/// node can tell a driver about a reading's lateness when the device sends
+/// no time of its own.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ReadWindow {
+    /// When the port's previous read was called. That read took every byte
+    /// readable then (or found none), so this read's bytes became readable
+    /// later. `None` when no such read is known: the first read after the
+    /// port opened, or a previous read that filled its buffer (and may have
+    /// left older bytes behind).
+    pub after: Option<HostTime>,
+    /// When this read returned: its bytes were readable by then.
+    pub returned: HostTime,
+}
+
+impl ReadWindow {
+    /// A read known only by when it returned.
+    pub const fn returned_at(returned: HostTime) -> Self {
+        Self {
+            after: None,
+            returned,
+        }
+    }
+}

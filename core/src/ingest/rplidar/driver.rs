@@ -31,7 +31,9 @@ use std::time::Duration;
 use super::conf;
 use super::conf::ConfQuery;
 use super::config::RplidarConfig;
-use super::device::{DeviceDriver, DeviceState, DeviceStats, DriverOutput, HostTime, RangeScan};
+use super::device::{
+    DeviceDriver, DeviceState, DeviceStats, DriverOutput, HostTime, RangeScan, StampBound,
+};
 use super::motor::MotorDrive;
 use super::plan::{self, Capabilities, ScanPlan};
 use super::probe::{Probe, Query};
@@ -414,6 +416,7 @@ impl RplidarDriver {
             stamp_ns: revolution.stamp_ns,
             received,
             rays: revolution.rays,
+            stamp_bound: StampBound::Untracked,
         }));
     }
 

@@ -10,7 +10,7 @@ use super::driver::{Phase, ScipDriver, HARDWARE_FAULT_LIMIT};
 use super::reply::Reply;
 use super::scan_data::decode_scan;
 use super::status::{Status, StatusClass};
-use crate::ingest::device::{DeviceState, DriverOutput, HostTime, RangeScan};
+use crate::ingest::device::{DeviceState, DriverOutput, HostTime, RangeScan, StampBound};
 
 impl ScipDriver {
     /// Writes the current scan request: `M*` waits for its acknowledgement,
@@ -198,6 +198,7 @@ impl ScipDriver {
             stamp_ns,
             received: now,
             rays,
+            stamp_bound: StampBound::Untracked,
         }));
         self.sequence = self.sequence.wrapping_add(1);
         self.stats.scans += 1;

@@ -430,3 +430,64 @@ fn stamps_use_the_configured_baud() {
     let scan = &scans(&bench.feed(&frame(300, 500, 0)))[0];
     assert_eq!(scan.stamp_ns, EPOCH_NS + bench.now.monotonic_ns - 97_656);
 }
+
+#[test]
+fn a_read_window_bounds_each_readings_time_and_stamps_the_middle() {
+    use crate::ingest::device::{ReadWindow, StampBound};
+    let mut bench = streaming_bench(BenewakeConfig {
+        link_latency: Duration::from_millis(2),
+        ..BenewakeConfig::default()
+    });
+    const MS: u64 = 1_000_000;
+    let wire = 781_250;
+    let after = bench.now.plus_ns(10 * MS);
+    let returned = after.plus_ns(30 * MS);
+    // Three frames and a corrupted one in a read 30 ms after the previous
+    // read's call, at the factory 100 Hz.
+    let mut bytes = Vec::new();
+    bytes.extend(frame(300, 500, 0));
+    let mut bad = frame(300, 500, 0);
+    bad[8] = bad[8].wrapping_add(1);
+    bytes.extend(bad);
+    bytes.extend(frame(310, 500, 0));
+    bytes.extend(frame(320, 500, 0));
+    let mut out = Vec::new();
+    let window = ReadWindow {
+        after: Some(after),
+        returned,
+    };
+    bench.driver.receive_read(&bytes, window, &mut out);
+    let delivered = scans(&out);
+    assert_eq!(delivered.len(), 3);
+    let bounds: Vec<(u64, u64)> = delivered
+        .iter()
+        .map(|s| match s.stamp_bound {
+            StampBound::Within {
+                earliest_ns,
+                latest_ns,
+            } => {
+                assert_eq!(s.stamp_ns, earliest_ns + (latest_ns - earliest_ns) / 2);
+                (earliest_ns, latest_ns)
+            }
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    let earliest = after.unix_ns - wire - 2 * MS;
+    let latest = returned.unix_ns - wire;
+    assert_eq!(bounds[2], (earliest, latest));
+    // One frame after it: at least 9.8 ms older, at most 10.2 ms.
+    assert_eq!(bounds[1], (earliest - 10_200_000, latest - 9_800_000));
+    // Two frames and a corrupted one (a frame slot) after the first.
+    assert_eq!(bounds[0], (earliest - 30_600_000, latest - 19_600_000));
+    // The first read after opening has no earlier read: no bound.
+    let mut out = Vec::new();
+    bench.driver.receive_read(
+        &frame(300, 500, 0),
+        ReadWindow::returned_at(returned.plus_ns(MS)),
+        &mut out,
+    );
+    assert_eq!(scans(&out)[0].stamp_bound, StampBound::Unbounded);
+    // Without read times the stamp is the old back-dating, untracked.
+    let plain = scans(&bench.feed(&frame(300, 500, 0)));
+    assert_eq!(plain[0].stamp_bound, StampBound::Untracked);
+}
