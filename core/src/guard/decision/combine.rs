@@ -37,7 +37,7 @@ pub(super) fn combine(
                 .iter()
                 .map(|v| view_bound(&v.report.shapes[i], v.allowance, policy));
             per_view
-                .reduce(|best, b| best_of(best, b))
+                .reduce(best_of)
                 .expect("at least one view")
         })
         .collect();
