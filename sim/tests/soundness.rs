@@ -14,7 +14,7 @@
 //! - The negative control: a guard that ignores unseen space is caught.
 
 use shroud_core::guard::UnobservedPolicy;
-use shroud_sim::soundness::{run, FindingClass, SoundnessParams, SoundnessReport};
+use shroud_sim::soundness::{minimise, run, FindingClass, SoundnessParams, SoundnessReport};
 
 /// Scenes per run (a few seconds each in the test profile).
 const CASES: u64 = 150;
@@ -98,6 +98,15 @@ fn realistic_scenes_fail_only_outside_the_guarantee() {
         );
     }
     assert!(report.verdicts.clear > 0 && report.verdicts.stop > 0);
+    // Every kept finding replays from its seed, pose and time, and
+    // minimising keeps the solid it came near.
+    if let Some(finding) = report.findings.first() {
+        let scene = minimise(&params, finding)
+            .expect("replays")
+            .expect("still optimistic");
+        assert!(!scene.solids.is_empty() || finding.solid.is_none());
+        assert!(!scene.sensors.is_empty());
+    }
 }
 
 /// With unseen space ignored, a view vouches for what its sensor never saw,

@@ -6,7 +6,7 @@
 
 use super::BenchArgs;
 use anyhow::{bail, Result};
-use shroud_sim::soundness::{run, FindingClass, SoundnessParams, SoundnessReport};
+use shroud_sim::soundness::{minimise, run, FindingClass, SoundnessParams, SoundnessReport};
 use std::time::Instant;
 
 pub fn run_bench(args: &BenchArgs) -> Result<()> {
@@ -30,6 +30,13 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         println!("\n## The simplest kept example of each class\n");
         for finding in report.simplest_findings() {
             println!("```\n{finding}```\n");
+            // Only the solids and sensors it needs: the same pose and time.
+            match minimise(&params, finding)? {
+                Some(scene) => {
+                    println!("Minimised (same pose and decision time):\n\n```\n{scene}```\n")
+                }
+                None => println!("(it does not replay alone)\n"),
+            }
         }
         bail!(
             "{} optimistic verdicts ({} contacts)",

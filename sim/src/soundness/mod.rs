@@ -22,7 +22,7 @@ pub mod truth;
 
 pub use arms::{ArmKind, Arms, URDF_ARM};
 pub use report::{Finding, FindingClass, SoundnessReport, VerdictCounts};
-pub use run::{run, run_case, scene_seed};
+pub use run::{minimise, run, run_case, scene_seed};
 pub use scene::{SensorSetup, SoundnessScene};
 pub use sensors::{FieldOfView, Projection, Sensor};
 pub use solids::{Body, Solid};

@@ -100,26 +100,28 @@ fn views_of(scene: &SoundnessScene, params: &SoundnessParams) -> Vec<View> {
         .collect()
 }
 
-/// One scene: `params.verdicts_per_case` verdicts checked against the truth.
-pub fn run_case(
+/// A scene's views fed to a guard, ready for decisions.
+struct Prepared {
+    views: Vec<View>,
+    guard: CollisionGuard,
+    /// Largest sampling margin of the views.
+    margin: f64,
+    last_arrival: f64,
+}
+
+/// Scans and fits the scene and feeds the views to a new guard in the order
+/// they arrive.
+fn prepare(
     arms: &Arms,
     params: &SoundnessParams,
-    seed: u64,
-) -> Result<SoundnessReport, SoundnessError> {
-    let scene = SoundnessScene::draw(params, seed);
-    let views = views_of(&scene, params);
-    let mut report = SoundnessReport::empty();
-    report.scenes = 1;
-    report.points = views.iter().map(|v| v.cloud.len() as u64).sum();
-    report.views = views.iter().filter(|v| v.envelope.is_some()).count() as u64;
-    report.views_missing = views.len() as u64 - report.views;
+    scene: &SoundnessScene,
+) -> Result<Prepared, SoundnessError> {
+    let views = views_of(scene, params);
     let margin = views
         .iter()
         .filter(|v| v.envelope.is_some())
         .map(|v| v.setup.sensor.sampling_margin())
         .fold(0.0, f64::max);
-    report.max_sampling_margin = margin;
-
     let arm = arms.get(scene.arm);
     let links: Vec<String> = arm.links().iter().map(|l| l.name.clone()).collect();
     let config = GuardConfig {
@@ -135,7 +137,7 @@ pub fn run_case(
         ..GuardPolicy::default()
     };
     let names = (0..views.len()).map(|k| format!("sensor{k}")).collect();
-    let mut guard = CollisionGuard::new(names, links.clone(), policy, config)?;
+    let mut guard = CollisionGuard::new(names, links, policy, config)?;
     let mut order: Vec<usize> = (0..views.len()).collect();
     order.sort_by(|&a, &b| {
         views[a]
@@ -161,6 +163,34 @@ pub fn run_case(
         let _ = guard.accept(k, input, mono_ns(s.arrival()), wall_ns(s.arrival()));
     }
     let last_arrival = views.iter().map(|v| v.setup.arrival()).fold(0.0, f64::max);
+    Ok(Prepared {
+        views,
+        guard,
+        margin,
+        last_arrival,
+    })
+}
+
+/// One scene: `params.verdicts_per_case` verdicts checked against the truth.
+pub fn run_case(
+    arms: &Arms,
+    params: &SoundnessParams,
+    seed: u64,
+) -> Result<SoundnessReport, SoundnessError> {
+    let scene = SoundnessScene::draw(params, seed);
+    let Prepared {
+        views,
+        guard,
+        margin,
+        last_arrival,
+    } = prepare(arms, params, &scene)?;
+    let arm = arms.get(scene.arm);
+    let mut report = SoundnessReport::empty();
+    report.scenes = 1;
+    report.points = views.iter().map(|v| v.cloud.len() as u64).sum();
+    report.views = views.iter().filter(|v| v.envelope.is_some()).count() as u64;
+    report.views_missing = views.len() as u64 - report.views;
+    report.max_sampling_margin = margin;
 
     let mut rng = Pcg64::seed_from_u64(seed ^ 0x05ee_d0f9_05e5);
     let cutoff = 2.0 * params.stop_distance + 0.01;
@@ -253,6 +283,65 @@ pub fn run_case(
         }
     }
     Ok(report)
+}
+
+/// Whether the verdict for joint values `q` at time `t` in `scene` is
+/// optimistic (clear, and some shape truly nearer than the stop distance
+/// less the sampling margin).
+fn is_optimistic(
+    arms: &Arms,
+    params: &SoundnessParams,
+    scene: &SoundnessScene,
+    q: &[f64],
+    t: f64,
+) -> Result<bool, SoundnessError> {
+    let prepared = prepare(arms, params, scene)?;
+    let pose = arms.get(scene.arm).forward(q)?;
+    let decision = prepared.guard.decide(&pose.shapes, mono_ns(t))?;
+    if decision.verdict != GuardVerdict::Clear {
+        return Ok(false);
+    }
+    let threshold = params.stop_distance - prepared.margin;
+    Ok(pose.shapes.iter().any(|s| {
+        nearest(
+            &Core::of(s),
+            &scene.solids,
+            t,
+            t + params.horizon,
+            threshold,
+        )
+        .0 < threshold
+    }))
+}
+
+/// The finding's scene with every solid and sensor removed that the
+/// optimistic verdict does not need (greedily, one at a time, the same arm
+/// pose and decision time), or `None` when the finding does not replay.
+pub fn minimise(
+    params: &SoundnessParams,
+    finding: &Finding,
+) -> Result<Option<SoundnessScene>, SoundnessError> {
+    let arms = Arms::load()?;
+    let (q, t) = (&finding.joints, finding.decision);
+    let mut scene = SoundnessScene::draw(params, finding.scene_seed);
+    if !is_optimistic(&arms, params, &scene, q, t)? {
+        return Ok(None);
+    }
+    for i in (0..scene.solids.len()).rev() {
+        let mut smaller = scene.clone();
+        smaller.solids.remove(i);
+        if is_optimistic(&arms, params, &smaller, q, t)? {
+            scene = smaller;
+        }
+    }
+    for k in (0..scene.sensors.len()).rev() {
+        let mut smaller = scene.clone();
+        smaller.sensors.remove(k);
+        if !smaller.sensors.is_empty() && is_optimistic(&arms, params, &smaller, q, t)? {
+            scene = smaller;
+        }
+    }
+    Ok(Some(scene))
 }
 
 /// What classifying a finding needs.
