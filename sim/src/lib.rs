@@ -8,6 +8,10 @@
 //! The scan scenes put a simulated [`RangeScanner`] (rays cast through a [`Bvh`]
 //! of a triangle mesh, with range noise and dropouts) around the table-top and
 //! terrain meshes ([`TableTop::mesh`], [`Terrain::mesh`]) or any user mesh.
+//!
+//! [`soundness`] is a brute-force check of the collision guard: random scenes
+//! of moving solids, scanned, fitted and judged by shroud, every verdict
+//! compared with exact geometry of its own.
 
 pub mod can_device;
 pub mod device;
@@ -20,6 +24,7 @@ mod sampling;
 pub mod scanned_parts;
 mod scanner;
 mod scene;
+pub mod soundness;
 mod table_objects;
 mod table_top;
 mod terrain;

@@ -7,6 +7,7 @@ mod devices;
 mod encode;
 mod foxglove_clients;
 mod graph;
+mod guard_soundness;
 mod latency;
 mod paper000;
 mod soak;
@@ -37,6 +38,10 @@ pub enum Suite {
     /// The demo graph for `--minutes`: memory, CPU, latency, drops and
     /// shared memory per window, memory slopes, cloud accounting (`--check`).
     Soak,
+    /// The collision guard against exact geometry: `--cases` random scenes
+    /// of moving solids scanned by random sensors, `--verdicts-per-case`
+    /// verdicts each; counts optimistic `clear` verdicts (must be 0).
+    GuardSoundness,
 }
 
 #[derive(Debug, Args)]
@@ -77,6 +82,30 @@ pub struct BenchArgs {
     /// Soak: the memory growth --check allows per node, MB.
     #[arg(long, default_value_t = 16.0)]
     pub max_growth_mb: f64,
+    /// Guard soundness: random scenes to draw.
+    #[arg(long, default_value_t = 10_000)]
+    pub cases: u64,
+    /// Guard soundness: seed of the first scene (each scene's seed is
+    /// printed with any finding, to replay it alone).
+    #[arg(long, default_value_t = 23)]
+    pub seed: u64,
+    /// Guard soundness: verdicts per scene (arm poses x decision times).
+    #[arg(long, default_value_t = 100)]
+    pub verdicts_per_case: usize,
+    /// Guard soundness: bound on the solids' speed, also the guard's
+    /// max_obstacle_speed (m/s).
+    #[arg(long, default_value_t = 0.25)]
+    pub obstacle_speed: f64,
+    /// Guard soundness: share of views fitted as sandwiches (else upper).
+    #[arg(long, default_value_t = 0.5)]
+    pub sandwich_share: f64,
+    /// Guard soundness: share of black solids (no range returned).
+    #[arg(long, default_value_t = 0.15)]
+    pub black_share: f64,
+    /// Guard soundness: sensors cast parallel rays along their look (the
+    /// sensor the guard's views assume) instead of rays from a point.
+    #[arg(long)]
+    pub parallel_rays: bool,
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {
@@ -87,5 +116,6 @@ pub fn run(args: BenchArgs) -> Result<()> {
         Suite::Can => can::run(&args),
         Suite::Consumers => consumers::run(&args),
         Suite::Soak => soak::run(&args),
+        Suite::GuardSoundness => guard_soundness::run_bench(&args),
     }
 }

@@ -1,0 +1,439 @@
+//! Running soundness cases: per scene, scan with every sensor at its own
+//! time, fit each cloud with shroud's fitter as the fit node does, feed the
+//! views to a real `CollisionGuard` on one time axis, and check every
+//! verdict for random arm poses and decision times against the truth.
+
+use super::arms::{random_configuration, Arms};
+use super::report::{Finding, FindingClass, SoundnessReport, MAX_FINDINGS};
+use super::scene::{SensorSetup, SoundnessScene};
+use super::solids::Solid;
+use super::truth::{nearest, nearest_surface_point, solid_distance, Core};
+use super::{SoundnessError, SoundnessParams};
+use glam::DVec3;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
+use rayon::prelude::*;
+use shroud_core::guard::{
+    check_shapes, CollisionGuard, Envelope, GuardConfig, GuardPolicy, SurrogateInput, WorldShape,
+};
+use shroud_core::message::{GuardVerdict, DEFAULT_MAX_CLOCK_OFFSET_NS};
+use shroud_core::surrogate::{fit_surrogate, FitOptions};
+
+/// The guard's monotonic clock reads this at scene time 0 (ns); its wall
+/// clock reads `WALL_OFFSET_NS` more. One axis, as the brief of the harness
+/// asks: ages are then exactly what the scene's timing says.
+const MONO_AT_ZERO_NS: u64 = 1_000_000_000;
+const WALL_OFFSET_NS: u64 = 1_750_000_000_000_000_000;
+
+/// Largest extra wait from the last arrival to a decision (s).
+const MAX_DECISION_DELAY: f64 = 0.3;
+
+fn mono_ns(t: f64) -> u64 {
+    MONO_AT_ZERO_NS + (t * 1e9).round() as u64
+}
+
+fn wall_ns(t: f64) -> u64 {
+    mono_ns(t) + WALL_OFFSET_NS
+}
+
+/// The seed of scene `index` of a run seeded with `seed` (a splitmix64
+/// step, so that neighbouring scenes are unrelated and each can be replayed
+/// alone with [`run_case`]).
+pub fn scene_seed(seed: u64, index: u64) -> u64 {
+    let mut z = seed
+        .wrapping_add(index.wrapping_mul(0x9e37_79b9_7f4a_7c15))
+        .wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// Runs `cases` scenes (in parallel) and adds up their reports.
+pub fn run(
+    params: &SoundnessParams,
+    cases: u64,
+    seed: u64,
+) -> Result<SoundnessReport, SoundnessError> {
+    params.validate()?;
+    let arms = Arms::load()?;
+    (0..cases)
+        .into_par_iter()
+        .map(|i| run_case(&arms, params, scene_seed(seed, i)))
+        .try_reduce(SoundnessReport::empty, |a, b| Ok(a.merged(b)))
+}
+
+/// One sensor's contribution: its cloud and, if it could be fitted, its view.
+struct View {
+    setup: SensorSetup,
+    cloud: Vec<[f32; 3]>,
+    envelope: Option<Envelope>,
+}
+
+/// The scene's sensors scanned and fitted as the fit node would.
+fn views_of(scene: &SoundnessScene, params: &SoundnessParams) -> Vec<View> {
+    scene
+        .sensors
+        .iter()
+        .map(|setup| {
+            let cloud = setup.sensor.scan(&scene.solids);
+            let envelope = (cloud.len() >= params.min_points)
+                .then(|| {
+                    let options = FitOptions {
+                        cols: setup.cols,
+                        rows: setup.rows,
+                        direction: setup.sensor.look.to_array(),
+                        sides: setup.sides,
+                        ..FitOptions::default()
+                    };
+                    // A fit or envelope error leaves the sensor without a
+                    // view: the guard then simply has one view fewer.
+                    let surrogate = fit_surrogate(&cloud, &options).ok()?;
+                    Envelope::new(&surrogate).ok()
+                })
+                .flatten();
+            View {
+                setup: *setup,
+                cloud,
+                envelope,
+            }
+        })
+        .collect()
+}
+
+/// A scene's views fed to a guard, ready for decisions.
+struct Prepared {
+    views: Vec<View>,
+    guard: CollisionGuard,
+    /// Largest sampling margin of the views.
+    margin: f64,
+    last_arrival: f64,
+}
+
+/// Scans and fits the scene and feeds the views to a new guard in the order
+/// they arrive.
+fn prepare(
+    arms: &Arms,
+    params: &SoundnessParams,
+    scene: &SoundnessScene,
+) -> Result<Prepared, SoundnessError> {
+    let views = views_of(scene, params);
+    let margin = views
+        .iter()
+        .filter(|v| v.envelope.is_some())
+        .map(|v| v.setup.sensor.sampling_margin())
+        .fold(0.0, f64::max);
+    let arm = arms.get(scene.arm);
+    let links: Vec<String> = arm.links().iter().map(|l| l.name.clone()).collect();
+    let config = GuardConfig {
+        stop_distance: params.stop_distance,
+        max_report: 2.0 * params.stop_distance,
+        refine_depth: 3,
+        max_obstacle_speed: params.max_obstacle_speed,
+        horizon: params.horizon,
+    };
+    let policy = GuardPolicy {
+        max_age_ns: (params.max_age * 1e9).round() as u64,
+        unobserved: params.unobserved,
+        ..GuardPolicy::default()
+    };
+    let names = (0..views.len()).map(|k| format!("sensor{k}")).collect();
+    let mut guard = CollisionGuard::new(names, links, policy, config)?;
+    let mut order: Vec<usize> = (0..views.len()).collect();
+    order.sort_by(|&a, &b| {
+        views[a]
+            .setup
+            .arrival()
+            .total_cmp(&views[b].setup.arrival())
+    });
+    for &k in &order {
+        let Some(envelope) = &views[k].envelope else {
+            continue;
+        };
+        let s = &views[k].setup;
+        let input = SurrogateInput {
+            envelope: envelope.clone(),
+            stamp_ns: wall_ns(s.sensor.time),
+            sequence: k as u64,
+            pipeline_ns: (s.pipeline * 1e9).round() as u64,
+            published_ns: wall_ns(s.sensor.time + s.pipeline),
+            position_error: 0.0,
+        };
+        // On one clock axis nothing is refused; a refusal would show as
+        // verdicts without that view, which the truth check still judges.
+        let _ = guard.accept(k, input, mono_ns(s.arrival()), wall_ns(s.arrival()));
+    }
+    let last_arrival = views.iter().map(|v| v.setup.arrival()).fold(0.0, f64::max);
+    Ok(Prepared {
+        views,
+        guard,
+        margin,
+        last_arrival,
+    })
+}
+
+/// One scene: `params.verdicts_per_case` verdicts checked against the truth.
+pub fn run_case(
+    arms: &Arms,
+    params: &SoundnessParams,
+    seed: u64,
+) -> Result<SoundnessReport, SoundnessError> {
+    let scene = SoundnessScene::draw(params, seed);
+    let Prepared {
+        views,
+        guard,
+        margin,
+        last_arrival,
+    } = prepare(arms, params, &scene)?;
+    let arm = arms.get(scene.arm);
+    let mut report = SoundnessReport::empty();
+    report.scenes = 1;
+    report.points = views.iter().map(|v| v.cloud.len() as u64).sum();
+    report.views = views.iter().filter(|v| v.envelope.is_some()).count() as u64;
+    report.views_missing = views.len() as u64 - report.views;
+    report.max_sampling_margin = margin;
+
+    let mut rng = Pcg64::seed_from_u64(seed ^ 0x05ee_d0f9_05e5);
+    let cutoff = 2.0 * params.stop_distance + 0.01;
+    let threshold = params.stop_distance - margin;
+    let mut remaining = params.verdicts_per_case;
+    while remaining > 0 {
+        let q = random_configuration(arm, &mut rng);
+        let pose = arm.forward(&q)?;
+        let cores: Vec<Core> = pose.shapes.iter().map(Core::of).collect();
+        let in_view = cores.iter().all(|c| {
+            c.samples().iter().all(|&p| {
+                views
+                    .iter()
+                    .any(|v| v.envelope.is_some() && v.setup.sensor.sees(p, &scene.solids))
+            })
+        });
+        for _ in 0..params.timings_per_pose.min(remaining) {
+            remaining -= 1;
+            let t = last_arrival + rng.random_range(0.0..=MAX_DECISION_DELAY);
+            let decision = guard.decide(&pose.shapes, mono_ns(t))?;
+            let truths: Vec<(f64, Option<usize>)> = cores
+                .iter()
+                .map(|c| nearest(c, &scene.solids, t, t + params.horizon, cutoff))
+                .collect();
+            let (worst, truth) = truths
+                .iter()
+                .enumerate()
+                .min_by(|a, b| a.1 .0.total_cmp(&b.1 .0))
+                .map(|(i, t)| (i, *t))
+                .unwrap_or((0, (f64::INFINITY, None)));
+            let counts = &mut report.verdicts;
+            match decision.verdict {
+                GuardVerdict::Clear => counts.clear += 1,
+                GuardVerdict::Stop | GuardVerdict::NoVerdict => counts.stop += 1,
+                GuardVerdict::Unobserved => counts.unobserved += 1,
+                GuardVerdict::Stale => counts.stale += 1,
+                GuardVerdict::NoSurrogate => counts.no_surrogate += 1,
+            }
+            let judged = matches!(
+                decision.verdict,
+                GuardVerdict::Clear | GuardVerdict::Stop | GuardVerdict::Unobserved
+            );
+            if judged && in_view && truth.0 > 2.0 * params.stop_distance {
+                report.eligible += 1;
+                report.eligible_stopped += u64::from(decision.verdict != GuardVerdict::Clear);
+                report.eligible_unobserved +=
+                    u64::from(decision.verdict == GuardVerdict::Unobserved);
+            }
+            if decision.verdict != GuardVerdict::Clear {
+                continue;
+            }
+            report.closest_clear = report.closest_clear.min(truth.0);
+            report.contacts += u64::from(truth.0 <= 0.0);
+            if truth.0 < threshold {
+                report.optimistic += 1;
+                let shape = &pose.shapes[worst];
+                let combined = decision.report.as_ref();
+                let ctx = Context {
+                    scene: &scene,
+                    views: &views,
+                    guard: &guard,
+                    params,
+                    margin,
+                };
+                let (class, vouching) = ctx.classify(shape, &cores[worst], truth.1, t);
+                report.classes[class as usize] += 1;
+                if report.findings.len() < MAX_FINDINGS {
+                    report.findings.push(Finding {
+                        scene_seed: seed,
+                        arm: scene.arm,
+                        joints: q.clone(),
+                        shape_index: worst,
+                        shape: shape.shape,
+                        decision: t,
+                        clearance: combined
+                            .and_then(|r| r.shapes.get(worst))
+                            .map_or(f64::NAN, |s| s.clearance),
+                        min_clearance: combined.map_or(f64::NAN, |r| r.min_clearance),
+                        truth: truth.0,
+                        solid: truth.1,
+                        sampling_margin: margin,
+                        vouching_view: vouching,
+                        vouching_sides: vouching.map(|k| views[k].setup.sides),
+                        class,
+                        scene_size: scene.solids.len() + scene.sensors.len(),
+                        scene: scene.to_string(),
+                    });
+                }
+            }
+        }
+    }
+    Ok(report)
+}
+
+/// Whether the verdict for joint values `q` at time `t` in `scene` is
+/// optimistic (clear, and some shape truly nearer than the stop distance
+/// less the sampling margin).
+fn is_optimistic(
+    arms: &Arms,
+    params: &SoundnessParams,
+    scene: &SoundnessScene,
+    q: &[f64],
+    t: f64,
+) -> Result<bool, SoundnessError> {
+    let prepared = prepare(arms, params, scene)?;
+    let pose = arms.get(scene.arm).forward(q)?;
+    let decision = prepared.guard.decide(&pose.shapes, mono_ns(t))?;
+    if decision.verdict != GuardVerdict::Clear {
+        return Ok(false);
+    }
+    let threshold = params.stop_distance - prepared.margin;
+    Ok(pose.shapes.iter().any(|s| {
+        nearest(
+            &Core::of(s),
+            &scene.solids,
+            t,
+            t + params.horizon,
+            threshold,
+        )
+        .0 < threshold
+    }))
+}
+
+/// The finding's scene with every solid and sensor removed that the
+/// optimistic verdict does not need (greedily, one at a time, the same arm
+/// pose and decision time), or `None` when the finding does not replay.
+pub fn minimise(
+    params: &SoundnessParams,
+    finding: &Finding,
+) -> Result<Option<SoundnessScene>, SoundnessError> {
+    let arms = Arms::load()?;
+    let (q, t) = (&finding.joints, finding.decision);
+    let mut scene = SoundnessScene::draw(params, finding.scene_seed);
+    if !is_optimistic(&arms, params, &scene, q, t)? {
+        return Ok(None);
+    }
+    for i in (0..scene.solids.len()).rev() {
+        let mut smaller = scene.clone();
+        smaller.solids.remove(i);
+        if is_optimistic(&arms, params, &smaller, q, t)? {
+            scene = smaller;
+        }
+    }
+    for k in (0..scene.sensors.len()).rev() {
+        let mut smaller = scene.clone();
+        smaller.sensors.remove(k);
+        if !smaller.sensors.is_empty() && is_optimistic(&arms, params, &smaller, q, t)? {
+            scene = smaller;
+        }
+    }
+    Ok(Some(scene))
+}
+
+/// What classifying a finding needs.
+struct Context<'a> {
+    scene: &'a SoundnessScene,
+    views: &'a [View],
+    guard: &'a CollisionGuard,
+    params: &'a SoundnessParams,
+    margin: f64,
+}
+
+impl Context<'_> {
+    /// Which view vouched for the shape (the largest bound after its
+    /// allowance, as the guard combines them; shroud's clearance code is
+    /// used here only to attribute, never as truth), and why that view's
+    /// sensor missed the obstacle, judged from the true geometry at its scan
+    /// time.
+    fn classify(
+        &self,
+        shape: &WorldShape,
+        core: &Core,
+        solid: Option<usize>,
+        t: f64,
+    ) -> (FindingClass, Option<usize>) {
+        let config = self.guard.config();
+        let one = [WorldShape { link: 0, ..*shape }];
+        let clock_offset = DEFAULT_MAX_CLOCK_OFFSET_NS as f64 * 1e-9;
+        let vouching = self
+            .views
+            .iter()
+            .enumerate()
+            .filter_map(|(k, v)| {
+                let envelope = v.envelope.as_ref()?;
+                let age = t - v.setup.sensor.time + clock_offset;
+                if age > self.params.max_age {
+                    return None;
+                }
+                let bound = check_shapes(envelope, &one, 1, config).ok()?.shapes[0].clearance;
+                let allowance = config.max_obstacle_speed * (age + config.horizon);
+                Some((k, bound, allowance))
+            })
+            .max_by(|a, b| (a.1 - a.2).total_cmp(&(b.1 - b.2)));
+        let Some((k, bound, allowance)) = vouching else {
+            return (FindingClass::Other, None);
+        };
+        let sensor = &self.views[k].setup.sensor;
+        let solids: &[Solid] = &self.scene.solids;
+        // The arm's point nearest the obstacle, and the obstacle's point
+        // nearest to it where the sensor saw the scene.
+        let target = |p: DVec3| match solid {
+            Some(i) => nearest_surface_point(&solids[i], sensor.time, p),
+            None => DVec3::new(p.x, p.y, 0.0),
+        };
+        let arm_point = core
+            .samples()
+            .into_iter()
+            .min_by(|a, b| {
+                (target(*a) - *a)
+                    .length()
+                    .total_cmp(&(target(*b) - *b).length())
+            })
+            .unwrap_or(core.a);
+        let p = target(arm_point);
+        // Nudged towards the sensor so that the surface itself does not
+        // count as its own blocker.
+        let nudged = sensor.origin + (p - sensor.origin) * (1.0 - 1e-6);
+        let in_fov = sensor.covers(nudged);
+        if !in_fov {
+            return (FindingClass::FieldOfView, Some(k));
+        }
+        if solid.is_some_and(|i| solids[i].black) {
+            return (FindingClass::BlackSolid, Some(k));
+        }
+        if !sensor.sees(nudged, solids) {
+            return (FindingClass::Occlusion, Some(k));
+        }
+        // Seen in plain view: at the scan time the obstacle was this far.
+        let then = match solid {
+            Some(i) => solid_distance(core, &solids[i], sensor.time, sensor.time, f64::INFINITY),
+            None => core.a.z.min(core.b.z) - core.radius,
+        };
+        if bound <= then + 1e-9 && bound - allowance >= config.stop_distance {
+            return (FindingClass::Timing, Some(k));
+        }
+        let sampled = self.views[k].cloud.iter().any(|c| {
+            (DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64) - p).length() <= self.margin
+        });
+        let class = if sampled {
+            FindingClass::Other
+        } else {
+            FindingClass::Sampling
+        };
+        (class, Some(k))
+    }
+}

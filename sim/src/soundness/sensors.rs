@@ -1,0 +1,325 @@
+//! Range sensors of a soundness scene: a pose, a field of view (a cone or a
+//! rectangular frustum), a maximum range and a square grid of rays on the
+//! image plane; a scan at the sensor's own time, and whether it saw a point.
+
+use super::rays::{cast, Hit};
+use super::solids::Solid;
+use glam::DVec3;
+
+/// The rays a sensor casts, as bounds on the image plane at unit distance
+/// (tangents of the half angles).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FieldOfView {
+    /// Every ray within `half_angle` (radians) of the look direction.
+    Cone { half_angle: f64 },
+    /// Rays within `half_x` to the right and left and `half_y` up and down.
+    Frustum { half_x: f64, half_y: f64 },
+}
+
+impl FieldOfView {
+    /// Whether the image-plane point `(x, y)` (at unit distance) is in view.
+    fn contains(&self, x: f64, y: f64) -> bool {
+        match *self {
+            FieldOfView::Cone { half_angle } => {
+                let t = half_angle.tan();
+                x * x + y * y <= t * t
+            }
+            FieldOfView::Frustum { half_x, half_y } => {
+                x.abs() <= half_x.tan() && y.abs() <= half_y.tan()
+            }
+        }
+    }
+
+    /// Half extents of the image-plane rectangle holding the view.
+    fn extent(&self) -> (f64, f64) {
+        match *self {
+            FieldOfView::Cone { half_angle } => (half_angle.tan(), half_angle.tan()),
+            FieldOfView::Frustum { half_x, half_y } => (half_x.tan(), half_y.tan()),
+        }
+    }
+
+    /// Area of the view on the image plane (to size the ray grid).
+    pub fn image_area(&self) -> f64 {
+        let (x, y) = self.extent();
+        match self {
+            FieldOfView::Cone { .. } => std::f64::consts::PI * x * x,
+            FieldOfView::Frustum { .. } => 4.0 * x * y,
+        }
+    }
+}
+
+/// How a sensor's rays leave it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Projection {
+    /// From the origin, through the image plane (a camera, a lidar).
+    Perspective,
+    /// Parallel to the look direction, from an aperture plane through the
+    /// origin, spaced as the perspective rays are at `reference` distance:
+    /// the sensor the guard's views assume (every column along the look
+    /// direction over the footprint is seen from outside the scene).
+    Parallel { reference: f64 },
+}
+
+/// A range sensor and when it scans.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sensor {
+    pub origin: DVec3,
+    /// Unit look direction (also the fitted view's direction).
+    pub look: DVec3,
+    /// Unit image axes, orthogonal to `look` and to each other.
+    pub right: DVec3,
+    pub up: DVec3,
+    pub fov: FieldOfView,
+    pub max_range: f64,
+    /// Spacing of the ray grid on the image plane at unit distance.
+    pub step: f64,
+    /// Scan time, seconds on the scene clock.
+    pub time: f64,
+    pub projection: Projection,
+}
+
+impl Sensor {
+    /// A sensor at `origin` looking along `look` (need not be unit), its
+    /// image x axis as horizontal as the look allows.
+    pub fn new(
+        origin: DVec3,
+        look: DVec3,
+        fov: FieldOfView,
+        max_range: f64,
+        step: f64,
+        time: f64,
+    ) -> Self {
+        let look = look.normalize();
+        let helper = if look.x.abs() < 0.9 {
+            DVec3::X
+        } else {
+            DVec3::Y
+        };
+        let up = look.cross(helper).normalize();
+        let right = up.cross(look);
+        Self {
+            origin,
+            look,
+            right,
+            up,
+            fov,
+            max_range,
+            step,
+            time,
+            projection: Projection::Perspective,
+        }
+    }
+
+    /// The ray through image-plane point `(x, y)`: its start and unit
+    /// direction.
+    fn ray(&self, x: f64, y: f64) -> (DVec3, DVec3) {
+        match self.projection {
+            Projection::Perspective => (
+                self.origin,
+                (self.look + self.right * x + self.up * y).normalize(),
+            ),
+            Projection::Parallel { reference } => (
+                self.origin + (self.right * x + self.up * y) * reference,
+                self.look,
+            ),
+        }
+    }
+
+    /// Image-plane index range of the grid along one axis.
+    fn half_count(extent: f64, step: f64) -> i64 {
+        (extent / step).floor() as i64
+    }
+
+    /// The number of rays of one scan.
+    pub fn ray_count(&self) -> usize {
+        let (ex, ey) = self.fov.extent();
+        let (nx, ny) = (
+            Self::half_count(ex, self.step),
+            Self::half_count(ey, self.step),
+        );
+        let mut n = 0;
+        for j in -ny..=ny {
+            for i in -nx..=nx {
+                n += usize::from(
+                    self.fov
+                        .contains(i as f64 * self.step, j as f64 * self.step),
+                );
+            }
+        }
+        n
+    }
+
+    /// Largest distance between neighbouring rays (diagonal neighbours of the
+    /// grid) at the maximum range: a tangent-plane step subtends at most
+    /// `step` radians (the derivative of atan is at most 1), so the gap is at
+    /// most `max_range * step * sqrt(2)`. An object that fits between four
+    /// rays can be missed; the guard only promises distance to what was
+    /// sampled.
+    pub fn sampling_margin(&self) -> f64 {
+        let spread = match self.projection {
+            Projection::Perspective => self.max_range,
+            Projection::Parallel { reference } => reference,
+        };
+        spread * self.step * std::f64::consts::SQRT_2
+    }
+
+    /// The points of one scan at the sensor's time: the first hit of every
+    /// ray, unless it is beyond range or on a black solid (which blocks the
+    /// ray all the same).
+    pub fn scan(&self, solids: &[Solid]) -> Vec<[f32; 3]> {
+        let (ex, ey) = self.fov.extent();
+        let (nx, ny) = (
+            Self::half_count(ex, self.step),
+            Self::half_count(ey, self.step),
+        );
+        let mut points = Vec::new();
+        for j in -ny..=ny {
+            for i in -nx..=nx {
+                let (x, y) = (i as f64 * self.step, j as f64 * self.step);
+                if !self.fov.contains(x, y) {
+                    continue;
+                }
+                let (o, d) = self.ray(x, y);
+                let Some((s, hit)) = cast(o, d, solids, self.time) else {
+                    continue;
+                };
+                let dark = matches!(hit, Hit::Solid(k) if solids[k].black);
+                if s <= self.max_range && !dark {
+                    let p = o + d * s;
+                    points.push([p.x as f32, p.y as f32, p.z as f32]);
+                }
+            }
+        }
+        points
+    }
+
+    /// Whether the sensor saw the point `p` as free space at its scan time:
+    /// inside its field of view and range, and no solid (nor the floor) on
+    /// the line of sight up to it. (Rays are discrete; this is the space the
+    /// sensor looked through, not the rays themselves.)
+    pub fn sees(&self, p: DVec3, solids: &[Solid]) -> bool {
+        if !self.covers(p) {
+            return false;
+        }
+        let (o, to) = match self.projection {
+            Projection::Perspective => (self.origin, p - self.origin),
+            Projection::Parallel { .. } => {
+                let depth = (p - self.origin).dot(self.look);
+                (p - self.look * depth, self.look * depth)
+            }
+        };
+        let dist = to.length();
+        dist == 0.0 || cast(o, to / dist, solids, self.time).is_none_or(|(s, _)| s > dist)
+    }
+
+    /// Whether `p` is inside the field of view and within range (whatever
+    /// stands in the way).
+    pub fn covers(&self, p: DVec3) -> bool {
+        let to = p - self.origin;
+        let depth = to.dot(self.look);
+        match self.projection {
+            Projection::Perspective => {
+                depth > 0.0
+                    && to.length() <= self.max_range
+                    && self
+                        .fov
+                        .contains(to.dot(self.right) / depth, to.dot(self.up) / depth)
+            }
+            Projection::Parallel { reference } => {
+                depth > 0.0
+                    && depth <= self.max_range
+                    && self
+                        .fov
+                        .contains(to.dot(self.right) / reference, to.dot(self.up) / reference)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::soundness::solids::Body;
+
+    #[test]
+    fn a_downward_cone_scans_the_floor_within_range() {
+        let sensor = Sensor::new(
+            DVec3::new(0.0, 0.0, 2.0),
+            -DVec3::Z,
+            FieldOfView::Cone { half_angle: 0.5 },
+            2.1,
+            0.01,
+            0.0,
+        );
+        let points = sensor.scan(&[]);
+        assert!(points.len() > 1000);
+        assert!(points.len() <= sensor.ray_count());
+        // Within range only: the rim of the cone is at 2 / cos(0.5) > 2.1.
+        assert!(points.len() < sensor.ray_count());
+        for p in &points {
+            assert!(p[2].abs() < 1e-6, "{p:?} is not on the floor");
+            let r = (p[0] * p[0] + p[1] * p[1]).sqrt() as f64;
+            assert!(r <= 2.0 * 0.5f64.tan() + 1e-6);
+        }
+        assert!(sensor.sees(DVec3::new(0.1, 0.0, 1.0), &[]));
+        assert!(
+            !sensor.sees(DVec3::new(1.5, 0.0, 1.0), &[]),
+            "outside the cone"
+        );
+        assert!(
+            !sensor.sees(DVec3::new(0.0, 0.0, 3.0), &[]),
+            "behind the sensor"
+        );
+    }
+
+    #[test]
+    fn parallel_rays_keep_their_spacing() {
+        let mut sensor = Sensor::new(
+            DVec3::new(0.0, 0.0, 2.0),
+            -DVec3::Z,
+            FieldOfView::Frustum {
+                half_x: 0.3,
+                half_y: 0.3,
+            },
+            3.0,
+            0.01,
+            0.0,
+        );
+        sensor.projection = Projection::Parallel { reference: 2.0 };
+        let points = sensor.scan(&[]);
+        assert_eq!(points.len(), sensor.ray_count());
+        let half = 2.0 * 0.3f64.tan() + 1e-6;
+        assert!(points
+            .iter()
+            .all(|p| (p[0] as f64).abs() <= half && (p[1] as f64).abs() <= half));
+        assert!((sensor.sampling_margin() - 0.02 * std::f64::consts::SQRT_2).abs() < 1e-12);
+        // A column over the footprint is seen at every height below the sensor.
+        assert!(sensor.sees(DVec3::new(0.6, 0.0, 1.9), &[]));
+        assert!(!sensor.sees(DVec3::new(0.7, 0.0, 1.9), &[]));
+    }
+
+    #[test]
+    fn black_solids_block_without_points_and_occlude() {
+        let black = Solid {
+            body: Body::Sphere { radius: 0.3 },
+            centre: DVec3::new(0.0, 0.0, 1.0),
+            velocity: DVec3::ZERO,
+            black: true,
+        };
+        let sensor = Sensor::new(
+            DVec3::new(0.0, 0.0, 2.0),
+            -DVec3::Z,
+            FieldOfView::Frustum {
+                half_x: 0.1,
+                half_y: 0.1,
+            },
+            5.0,
+            0.01,
+            0.0,
+        );
+        assert!(sensor.scan(&[black]).is_empty());
+        assert!(!sensor.sees(DVec3::new(0.0, 0.0, 0.2), &[black]));
+        assert!(sensor.sees(DVec3::new(0.0, 0.0, 1.5), &[black]));
+        assert!(sensor.sampling_margin() > 0.0);
+    }
+}

@@ -1,0 +1,151 @@
+//! The guard's promise, checked by brute force: random scenes of moving
+//! solids, scanned by random sensors, fitted and judged by shroud's real
+//! fitter and guard, every verdict compared with exact geometry
+//! (`shroud_sim::soundness`; the full run is `shroud bench guard-soundness`).
+//!
+//! - Within the guard's documented assumptions (sensors that see every
+//!   column over their footprint, i.e. parallel rays, and no black solids) a
+//!   `clear` must never be optimistic, and the run must not be trivially
+//!   safe: clear verdicts and stops, near and far.
+//! - In the realistic scenes (perspective sensors, black solids) optimistic
+//!   verdicts exist (docs/guard-soundness.md); each must fall in a class the
+//!   guard documents as outside its guarantee, never timing, sampling or
+//!   anything else.
+//! - The negative control: a guard that ignores unseen space is caught.
+
+use shroud_core::guard::UnobservedPolicy;
+use shroud_sim::soundness::{minimise, run, FindingClass, SoundnessParams, SoundnessReport};
+
+/// Scenes per run (a few seconds each in the test profile).
+const CASES: u64 = 150;
+const SEED: u64 = 23;
+
+/// Scenes the guard's assumptions cover.
+fn assumed() -> SoundnessParams {
+    SoundnessParams {
+        parallel_rays: true,
+        black_share: 0.0,
+        ..SoundnessParams::default()
+    }
+}
+
+fn findings(report: &SoundnessReport) -> String {
+    let list: Vec<String> = report.findings.iter().map(|f| f.to_string()).collect();
+    format!("{:?}\n{}", report.classes, list.join("\n"))
+}
+
+#[test]
+fn no_clear_verdict_is_optimistic_within_the_assumptions() {
+    let params = assumed();
+    let report = run(&params, CASES, SEED).expect("the run runs");
+    eprintln!(
+        "{:#?}",
+        SoundnessReport {
+            findings: Vec::new(),
+            ..report.clone()
+        }
+    );
+    assert_eq!(report.scenes, CASES);
+    assert_eq!(
+        report.verdicts.total(),
+        CASES * params.verdicts_per_case as u64
+    );
+    assert_eq!(report.contacts, 0, "{}", findings(&report));
+    assert_eq!(report.optimistic, 0, "{}", findings(&report));
+    // Not trivially safe: the guard said clear and stop, and cleared poses
+    // close to the stop distance.
+    let v = &report.verdicts;
+    assert!(v.clear * 5 >= v.total(), "{v:?}");
+    assert!(v.stop * 5 >= v.total(), "{v:?}");
+    assert!(report.views > CASES, "most scenes have several views");
+    assert!(
+        report.closest_clear < 2.5 * params.stop_distance,
+        "{}",
+        report.closest_clear
+    );
+    assert!(
+        report.eligible * 10 >= v.total(),
+        "{} eligible",
+        report.eligible
+    );
+    // The brief's target for stops in seen free space is a third; the guard
+    // is at about 53 % here (the motion allowance of 0.25 m/s over the
+    // data's age and horizon is most of it). Bound it so that it cannot
+    // silently grow.
+    let share = report.conservativeness().expect("some poses are eligible");
+    assert!(share <= 0.6, "conservativeness {share}");
+}
+
+#[test]
+fn realistic_scenes_fail_only_outside_the_guarantee() {
+    let params = SoundnessParams::default();
+    let report = run(&params, CASES, SEED).expect("the run runs");
+    eprintln!(
+        "classes {:?}, optimistic {}",
+        report.classes, report.optimistic
+    );
+    assert_eq!(report.classes.iter().sum::<u64>(), report.optimistic);
+    for class in [
+        FindingClass::Timing,
+        FindingClass::Sampling,
+        FindingClass::Other,
+    ] {
+        assert_eq!(
+            report.classes[class as usize],
+            0,
+            "{class:?}: {}",
+            findings(&report)
+        );
+    }
+    assert!(report.verdicts.clear > 0 && report.verdicts.stop > 0);
+    // Every kept finding replays from its seed, pose and time, and
+    // minimising keeps the solid it came near.
+    if let Some(finding) = report.findings.first() {
+        let scene = minimise(&params, finding)
+            .expect("replays")
+            .expect("still optimistic");
+        assert!(!scene.solids.is_empty() || finding.solid.is_none());
+        assert!(!scene.sensors.is_empty());
+    }
+}
+
+/// With unseen space ignored, a view vouches for what its sensor never saw,
+/// and the harness must catch it even where the assumptions hold.
+#[test]
+fn ignoring_unseen_space_is_caught() {
+    let params = SoundnessParams {
+        unobserved: UnobservedPolicy::Ignore,
+        ..assumed()
+    };
+    let report = run(&params, CASES, SEED).expect("the run runs");
+    eprintln!(
+        "classes {:?}, optimistic {}",
+        report.classes, report.optimistic
+    );
+    assert!(report.optimistic > 0, "the harness missed a lying guard");
+    assert!(!report.findings.is_empty());
+}
+
+#[test]
+fn bad_parameters_are_errors() {
+    for params in [
+        SoundnessParams {
+            stop_distance: -1.0,
+            ..SoundnessParams::default()
+        },
+        SoundnessParams {
+            horizon: f64::NAN,
+            ..SoundnessParams::default()
+        },
+        SoundnessParams {
+            timings_per_pose: 0,
+            ..SoundnessParams::default()
+        },
+        SoundnessParams {
+            black_share: 2.0,
+            ..SoundnessParams::default()
+        },
+    ] {
+        assert!(run(&params, 1, 0).is_err(), "{params:?}");
+    }
+}
