@@ -171,6 +171,9 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
             continue;
         };
         let here_ns = arrival.received.elapsed().as_nanos() as u64;
+        // The certificate is about the points as placed; how far the sensor
+        // may have misplaced them travels on, for the guard to subtract.
+        out.position_error_m = msg.position_error_m;
         out.pipeline_ns = msg
             .pipeline_ns
             .saturating_add(transit_ns)
