@@ -52,9 +52,14 @@ pub struct SurrogateMessage {
     /// Bound on how far any point of the source cloud may lie from where its
     /// sensor placed it (metres, finite, `>= 0`; the cloud's own bound, 0 when
     /// the sensor states none): the certificate is about the points as
-    /// placed, so a consumer shrinks every clearance by this.
-    #[serde(default)]
+    /// placed, so a consumer shrinks every clearance by this. Absent on the
+    /// wire when 0, so a surrogate of an exact sensor encodes as before.
+    #[serde(default, skip_serializing_if = "is_zero")]
     pub position_error_m: f64,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 impl SurrogateMessage {
