@@ -36,9 +36,7 @@ pub(super) fn combine(
             let per_view = views
                 .iter()
                 .map(|v| view_bound(&v.report.shapes[i], v.allowance, policy));
-            per_view
-                .reduce(best_of)
-                .expect("at least one view")
+            per_view.reduce(best_of).expect("at least one view")
         })
         .collect();
     summarise(combined, link_count, config)
