@@ -170,6 +170,10 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
         let Some(transit_ns) = cloud_transit(&ctx, &arrival, max_offset_ns) else {
             continue;
         };
+        // The publication's timestamp is taken before the time here is
+        // measured and the message encoded: the encoding, and any pause
+        // before the put, then count as transit at the guard.
+        let published = ctx.session.new_timestamp();
         let here_ns = arrival.received.elapsed().as_nanos() as u64;
         // The certificate is about the points as placed; how far the sensor
         // may have misplaced them travels on, for the guard to subtract.
@@ -180,7 +184,7 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
             .saturating_add(here_ns);
         let publish_start = Instant::now();
         match out.to_bytes() {
-            Ok(bytes) => match publisher.put(bytes).wait() {
+            Ok(bytes) => match publisher.put(bytes).timestamp(published).wait() {
                 Ok(()) => ctx.metrics.add("published", 1),
                 Err(e) => {
                     ctx.metrics.add("publish_errors", 1);
