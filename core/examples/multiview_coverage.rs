@@ -4,7 +4,7 @@
 //! compared with the brute-force truth (no cloud point inside the sphere).
 //!
 //! `cargo run --release -p shroud-core --example multiview_coverage` prints the
-//! README's table: per radius, the share of truly free spheres that 1, 2 and 3
+//! table in docs/node-graph.md: per radius, the share of truly free spheres that 1, 2 and 3
 //! views prove clear, and how many they wrongly prove clear (always 0).
 
 use glam::DVec3;

@@ -1,5 +1,5 @@
 //! `shroud bench`: reproduces the timing tables of paper 000 on the paper's own
-//! scene and prints them beside the paper's numbers (markdown, for the README).
+//! scene and prints them beside the paper's numbers (markdown, for docs/benchmarks.md).
 
 mod can;
 mod consumers;
