@@ -55,13 +55,31 @@ impl Envelope {
         if let (Some((h0, h1)), Some((g0, g1))) =
             (self.span(0, lo_u, hi_u), self.span(1, lo_v, hi_v))
         {
+            let d = self.domain();
+            // How far the core's extent along one axis lies from a cell's
+            // interval: a lower bound on the distance to anything in the cell,
+            // so cells no nearer than the current best are skipped.
+            let gap = |lo: f64, hi: f64, start: f64, step: f64, k: usize| {
+                let (c0, c1) = (start + k as f64 * step, start + (k + 1) as f64 * step);
+                (c0 - hi).max(lo - c1).max(0.0)
+            };
+            let (u, v) = (
+                [a[0].min(b[0]), a[0].max(b[0])],
+                [a[1].min(b[1]), a[1].max(b[1])],
+            );
             for g in g0..=g1 {
+                if gap(v[0], v[1], d.v_min, d.v_step, g) - offset >= best {
+                    continue;
+                }
                 for h in h0..=h1 {
                     if best <= 0.0 {
                         return 0.0;
                     }
-                    let d = self.distance_to_trimmed(h, g, a, b) - offset;
-                    best = best.min(d);
+                    if gap(u[0], u[1], d.u_min, d.u_step, h) - offset >= best {
+                        continue;
+                    }
+                    let dist = self.distance_to_trimmed(h, g, a, b) - offset;
+                    best = best.min(dist);
                 }
             }
         }
