@@ -396,7 +396,8 @@ fn faults_an_unplugged_lidar_halts_the_arm_until_certified_surrogates_return() {
     });
     let unplugged = at();
     assert_eq!(label(&gone, "device.kind"), "hokuyo", "{gone:?}");
-    // Surrogates are never stale before the unplug: a stale halt is its doing.
+    // Surrogates are never stale before the unplug: a stale halt (or a stop
+    // that turns stale, counted under both causes) is its doing.
     board.wait_for("arm", "a halt for stale surrogates", RECOVERY, |s| {
         s.counter("halts_stale") >= 1
     });

@@ -177,8 +177,9 @@ fn on_verdict(ctx: &NodeContext, verdicts: &Mutex<Verdicts>, msg: &CollisionMess
     }
 }
 
-/// Halts as they happen: counted per cause, logged with their reason and
-/// their length, and the time spent halted in the status.
+/// Halts as they happen: `halts` counts them, `halts_<cause>` counts each
+/// halt under every cause that held it, they are logged with their reason and
+/// their length, and the time spent halted is in the status.
 #[derive(Default)]
 struct HaltLog {
     since: Option<(Instant, GuardVerdict)>,
@@ -198,6 +199,14 @@ impl HaltLog {
                 };
                 tracing::warn!("halted: {why}");
                 self.since = Some((now, v));
+            }
+            // A halt whose cause changes (a stop that turns stale when the
+            // sensor goes away) counts under its new cause too, so each
+            // `halts_<cause>` says whether that cause ever held the arm.
+            (Motion::Halt(v), Some((start, was))) if v != was => {
+                ctx.metrics.add(v.halt_counter(), 1);
+                tracing::warn!("still halted, now {}: {reason}", v.name());
+                self.since = Some((start, v));
             }
             (Motion::Move, Some((start, v))) => {
                 let held = (now - start).as_secs_f64();
