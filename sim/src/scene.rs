@@ -9,6 +9,7 @@ use crate::table_top::TableTop;
 use crate::terrain::Terrain;
 use serde::{Deserialize, Serialize};
 use shroud_core::format::TriangleMesh;
+use shroud_core::message::FieldOfView;
 use std::str::FromStr;
 
 /// Any scene. Serialized with a `"kind"` tag holding the scene's name, e.g.
@@ -177,6 +178,14 @@ impl Scene {
             Self::ScanMesh(s) => s.scan(time).map(Some),
             _ => Ok(None),
         }
+    }
+
+    /// The region a scan scene's scanner covers at `time` seconds (see
+    /// [`RangeScanner::field_of_view`]), or `Ok(None)` for a scene that is
+    /// not a scan.
+    pub fn field_of_view(&self, time: f64) -> Result<Option<FieldOfView>, SceneError> {
+        check_finite("time", time)?;
+        self.scanner().map(|s| s.field_of_view(time)).transpose()
     }
 
     /// Number of points every generated cloud has; for a scan scene the number

@@ -30,6 +30,7 @@
 
 use super::error::GuardError;
 use crate::math::Frame;
+use crate::message::FieldOfView;
 use crate::query::{kept_closed, patch_on_rect, SideView, SurrogateView};
 use crate::spline::{bezier_patch, BezierPatch, UniformCubicSurface};
 use crate::surrogate::trim::{ALL, BOTTOM, LEFT, RIGHT, TOP};
@@ -118,6 +119,9 @@ pub struct Envelope {
     /// are world distances up to a factor `1 +- 3 frame_error`).
     frame_error: f64,
     kept_cells: usize,
+    /// The region the source cloud's sensor covered, when the cloud said:
+    /// space outside it is unseen (`guard::field_of_view`).
+    field_of_view: Option<FieldOfView>,
 }
 
 impl CellBox {
@@ -178,6 +182,7 @@ impl Envelope {
             frame_error,
             inv_step: [1.0 / domain.u_step, 1.0 / domain.v_step],
             kept_cells: 0,
+            field_of_view: None,
         };
         for g in 0..cells_t {
             let mut row_v = [f64::INFINITY, f64::NEG_INFINITY];
@@ -259,6 +264,22 @@ impl Envelope {
     }
 
     /// Deviation of the frame from orthonormal (see the field).
+    /// The same envelope, knowing the region its cloud's sensor covered (or
+    /// not): space outside it counts as unseen. Refused unless it is convex.
+    pub fn with_field_of_view(mut self, fov: Option<FieldOfView>) -> Result<Self, GuardError> {
+        if let Some(f) = &fov {
+            f.validate()
+                .map_err(|e| GuardError::FieldOfView(e.to_string()))?;
+        }
+        self.field_of_view = fov;
+        Ok(self)
+    }
+
+    /// The region the source cloud's sensor covered, if the cloud said.
+    pub fn field_of_view(&self) -> Option<&FieldOfView> {
+        self.field_of_view.as_ref()
+    }
+
     pub(crate) fn frame_error(&self) -> f64 {
         self.frame_error
     }

@@ -8,6 +8,8 @@ use thiserror::Error;
 pub enum GuardError {
     #[error("arm file: {0}")]
     Toml(String),
+    #[error("{0}")]
+    FieldOfView(String),
     #[error("URDF: {0}")]
     Urdf(String),
     #[error("{what} must be finite, got {value}")]

@@ -38,6 +38,7 @@ mod deadman;
 mod decision;
 mod envelope;
 mod error;
+mod field_of_view;
 mod joint;
 mod kinematics;
 mod probe;
@@ -63,6 +64,7 @@ pub use decision::{
 };
 pub use envelope::{CellBox, Envelope};
 pub use error::GuardError;
+pub use field_of_view::depth_inside;
 pub use joint::{origin_from_xyz_rpy, Joint, JointKind, Limits};
 pub use kinematics::ArmPose;
 pub use report::{check_arm, check_shapes, GuardReport, ShapeClearance};

@@ -8,6 +8,9 @@
 //! the view's direction `w`. The distance from a shape to such a prism is the
 //! distance, in the frame's `(u, v)` plane, from the shape's core (a point, or
 //! a segment for a capsule) to the prism's cross-section, minus the radius.
+//! When the cloud stated its sensor's field of view, the space outside it is
+//! unseen too (`guard::field_of_view`): a kept triangle at the edge of the
+//! view is partly interpolated over space the sensor never looked at.
 //!
 //! Why this makes views of *different* clouds combine soundly: each view's
 //! bound `min(occupied, unseen)` is a lower bound on the distance to anything
@@ -15,6 +18,7 @@
 //! say, so the largest bound over the views is a lower bound too.
 
 use super::config::GuardConfig;
+use super::field_of_view::clearance_outside;
 use super::shape::Shape;
 use super::Envelope;
 use crate::surrogate::trim::{BOTTOM, LEFT, RIGHT, TOP};
@@ -33,8 +37,8 @@ const TRIANGLES: [(u8, [P2; 3]); 4] = [
 
 impl Envelope {
     /// Lower bound on the distance from `shape` to the space this view did
-    /// not see (outside the domain or over a trimmed triangle), in
-    /// `[0, max_report]`.
+    /// not see (outside the domain, over a trimmed triangle, or outside its
+    /// sensor's field of view when the cloud stated it), in `[0, max_report]`.
     pub(crate) fn unseen_clearance(&self, shape: &Shape, config: &GuardConfig) -> f64 {
         let (a, b) = match shape {
             Shape::Sphere(s) => {
@@ -49,6 +53,9 @@ impl Envelope {
         let cap = config.max_report;
         let offset = shape.radius() + self.slack(shape, config);
         let mut best = self.distance_outside_domain(a, b) - offset;
+        if let Some(fov) = self.field_of_view() {
+            best = best.min(clearance_outside(fov, shape, cap));
+        }
         let reach = cap + offset;
         let (lo_u, hi_u) = (a[0].min(b[0]) - reach, a[0].max(b[0]) + reach);
         let (lo_v, hi_v) = (a[1].min(b[1]) - reach, a[1].max(b[1]) + reach);

@@ -6,6 +6,7 @@ use super::channels::{
     blobs_to_channels, channels_to_blobs, check_channels, ChannelBlobs, PointChannel,
 };
 use super::error::MessageError;
+use super::FieldOfView;
 use super::SCHEMA_VERSION;
 use serde::{Deserialize, Serialize};
 
@@ -49,6 +50,11 @@ pub struct CloudMessage {
     /// Which sensor or scene produced it.
     pub source: String,
     pub pose: SensorPose,
+    /// The region the sensor's rays covered, when the producer knows it
+    /// (absent otherwise, and in messages from before the field existed):
+    /// a consumer that finds it counts everything outside as unseen.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub field_of_view: Option<FieldOfView>,
     /// `points * 4` bytes of little-endian f32 intensity, or absent.
     #[serde(with = "serde_bytes", default, skip_serializing_if = "Option::is_none")]
     pub intensity: Option<Vec<u8>>,
@@ -78,6 +84,7 @@ impl CloudMessage {
             position_error_m: 0.0,
             source: source.to_owned(),
             pose,
+            field_of_view: None,
             points: f32s_to_bytes(points.iter().flatten().copied()),
             intensity: None,
             channels: None,
@@ -263,6 +270,33 @@ mod tests {
         let read = CloudMessage::from_bytes(&old).unwrap();
         assert_eq!(read.position_error_m, 0.0);
         assert_eq!(read.point_array().unwrap(), msg.point_array().unwrap());
+    }
+
+    #[test]
+    fn the_field_of_view_round_trips_is_validated_and_keeps_points_last() {
+        let fov = super::super::sample_field_of_view();
+        let mut msg = sample();
+        msg.field_of_view = Some(fov);
+        let bytes = msg.to_bytes().unwrap();
+        assert_eq!(CloudMessage::from_bytes(&bytes).unwrap(), msg);
+        let view = super::super::CloudView::from_bytes(&bytes).unwrap();
+        assert_eq!(view.field_of_view, Some(fov));
+        let tail = &bytes[bytes.len() - msg.points.len() - 12..];
+        assert!(tail.windows(6).any(|w| w == b"points"));
+        // Without one, the encoding is the one from before the field.
+        assert!(!sample()
+            .to_bytes()
+            .unwrap()
+            .windows(13)
+            .any(|w| w == b"field_of_view"));
+        msg.field_of_view = Some(FieldOfView {
+            max_range: -1.0,
+            ..fov
+        });
+        let e = CloudMessage::from_bytes(&msg.to_bytes().unwrap()).unwrap_err();
+        assert!(e.to_string().contains("max_range"), "{e}");
+        let view = super::super::CloudView::new(1, 2, "s", SensorPose::default(), &[]);
+        assert!(view.with_field_of_view(msg.field_of_view.unwrap()).is_err());
     }
 
     #[test]

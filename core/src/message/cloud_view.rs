@@ -4,7 +4,7 @@
 
 use super::channels::{channels_to_blobs, check_channels, ChannelBlobs, PointChannel};
 use super::error::MessageError;
-use super::{check_version, CloudMessage, SensorPose, SCHEMA_VERSION};
+use super::{check_version, CloudMessage, FieldOfView, SensorPose, SCHEMA_VERSION};
 use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
 
@@ -29,6 +29,9 @@ pub struct CloudView<'a> {
     #[serde(borrow)]
     pub source: Cow<'a, str>,
     pub pose: SensorPose,
+    /// See [`CloudMessage::field_of_view`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub field_of_view: Option<FieldOfView>,
     #[serde(
         borrow,
         with = "serde_bytes",
@@ -70,6 +73,7 @@ impl<'a> CloudView<'a> {
             position_error_m: 0.0,
             source: Cow::Borrowed(source),
             pose,
+            field_of_view: None,
             align: None,
             points: le_bytes(bytemuck::cast_slice(points)),
             intensity: None,
@@ -102,6 +106,14 @@ impl<'a> CloudView<'a> {
     pub fn with_position_error_m(mut self, metres: f64) -> Result<Self, MessageError> {
         check_position_error(metres)?;
         self.position_error_m = metres;
+        Ok(self)
+    }
+
+    /// The same message with the region its sensor's rays covered
+    /// ([`CloudMessage::field_of_view`]); refused unless it is convex.
+    pub fn with_field_of_view(mut self, fov: FieldOfView) -> Result<Self, MessageError> {
+        fov.validate()?;
+        self.field_of_view = Some(fov);
         Ok(self)
     }
 
@@ -165,6 +177,9 @@ impl<'a> CloudView<'a> {
         let view: CloudView<'a> = super::blob::decode(bytes)?;
         check_version(view.version)?;
         check_position_error(view.position_error_m)?;
+        if let Some(fov) = &view.field_of_view {
+            fov.validate()?;
+        }
         let pose = view.pose.position.iter().chain(&view.pose.orientation);
         if let Some(index) = pose.clone().position(|v| !v.is_finite()) {
             return Err(MessageError::NonFinite {
@@ -251,6 +266,7 @@ impl<'a> CloudView<'a> {
             position_error_m: self.position_error_m,
             source: self.source.clone().into_owned(),
             pose: self.pose,
+            field_of_view: self.field_of_view,
             points: self.points.to_vec(),
             intensity: self.intensity.as_ref().map(|i| i.to_vec()),
             channels: self.channels.clone(),

@@ -12,6 +12,7 @@ mod cloud_view;
 mod collision;
 mod describe;
 mod error;
+mod field_of_view;
 mod joints;
 mod skew;
 mod smooth;
@@ -33,6 +34,9 @@ pub(crate) use collision::sample_collision;
 pub use collision::{CollisionMessage, GuardVerdict, LinkClearance};
 pub use describe::describe;
 pub use error::MessageError;
+#[cfg(test)]
+pub(crate) use field_of_view::sample_field_of_view;
+pub use field_of_view::{Aperture, FieldOfView};
 pub use joints::JointStateMessage;
 pub use skew::{
     check_stamp_skew, counted_transit, max_skew_ns_from_secs, ClockAhead, StampSkew,

@@ -3,7 +3,7 @@
 
 use super::blob::{bytes_to_f64s, decode, encode, f64s_to_bytes};
 use super::error::MessageError;
-use super::{check_version, SCHEMA_VERSION};
+use super::{check_version, FieldOfView, SCHEMA_VERSION};
 use crate::format::validate_surrogate;
 use crate::math::Frame;
 use crate::spline::UniformCubicSurface;
@@ -56,6 +56,11 @@ pub struct SurrogateMessage {
     /// wire when 0, so a surrogate of an exact sensor encodes as before.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub position_error_m: f64,
+    /// The region the source cloud's sensor covered, copied from the cloud
+    /// (absent when the cloud had none): a consumer counts space outside it
+    /// as unseen, since the surface over it was not measured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub field_of_view: Option<FieldOfView>,
 }
 
 fn is_zero(x: &f64) -> bool {
@@ -96,6 +101,7 @@ impl SurrogateMessage {
             stats: s.stats.clone(),
             fit_ns,
             position_error_m: 0.0,
+            field_of_view: None,
         }
     }
 
@@ -113,6 +119,9 @@ impl SurrogateMessage {
                 field: "position_error_m",
                 reason: format!("{} is not a finite distance >= 0", msg.position_error_m),
             });
+        }
+        if let Some(fov) = &msg.field_of_view {
+            fov.validate()?;
         }
         let surrogate = msg.to_surrogate()?;
         Ok((msg, surrogate))
@@ -246,6 +255,16 @@ mod tests {
                 })
             ));
         }
+        let mut msg = good.clone();
+        msg.field_of_view = Some(super::super::sample_field_of_view());
+        let (back, _) = SurrogateMessage::from_bytes(&msg.to_bytes().unwrap()).unwrap();
+        assert_eq!(back.field_of_view, msg.field_of_view);
+        msg.field_of_view = Some(crate::message::FieldOfView {
+            axis: [0.0, 0.0, 0.5],
+            ..super::super::sample_field_of_view()
+        });
+        let e = SurrogateMessage::from_bytes(&msg.to_bytes().unwrap()).unwrap_err();
+        assert!(e.to_string().contains("axis"), "{e}");
         let bytes = good.to_bytes().unwrap();
         for len in (0..bytes.len()).step_by(7) {
             assert!(SurrogateMessage::from_bytes(&bytes[..len]).is_err());

@@ -16,6 +16,7 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         sandwich_share: args.sandwich_share,
         black_share: args.black_share,
         parallel_rays: args.parallel_rays,
+        state_field_of_view: !args.no_field_of_view,
         ..SoundnessParams::default()
     };
     let start = Instant::now();
@@ -103,7 +104,7 @@ fn table(r: &SoundnessReport, p: &SoundnessParams, args: &BenchArgs, wall: f64) 
             format!(
                 "--cases {} --seed {} --verdicts-per-case {}; stop distance {} m, obstacle speed <= {} m/s, \
                  horizon {} s, max age {} s, {} decision times per pose, <= {} rays per sensor, \
-                 sandwich share {}, black share {}, {} rays",
+                 sandwich share {}, black share {}, {} rays, field of view {}",
                 args.cases,
                 args.seed,
                 p.verdicts_per_case,
@@ -115,7 +116,8 @@ fn table(r: &SoundnessReport, p: &SoundnessParams, args: &BenchArgs, wall: f64) 
                 p.max_rays,
                 p.sandwich_share,
                 p.black_share,
-                if p.parallel_rays { "parallel" } else { "perspective" }
+                if p.parallel_rays { "parallel" } else { "perspective" },
+                if p.state_field_of_view { "stated" } else { "not stated" }
             ),
         ),
         (

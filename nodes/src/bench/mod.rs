@@ -106,6 +106,10 @@ pub struct BenchArgs {
     /// sensor the guard's views assume) instead of rays from a point.
     #[arg(long)]
     pub parallel_rays: bool,
+    /// Guard soundness: clouds do not state their sensor's field of view
+    /// (the guard then trusts kept triangles at the edge of a view).
+    #[arg(long)]
+    pub no_field_of_view: bool,
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {

@@ -178,6 +178,9 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
         // The certificate is about the points as placed; how far the sensor
         // may have misplaced them travels on, for the guard to subtract.
         out.position_error_m = msg.position_error_m;
+        // So is where the sensor looked: outside it the surface was not
+        // measured, whatever the interpolation says.
+        out.field_of_view = msg.field_of_view;
         out.pipeline_ns = msg
             .pipeline_ns
             .saturating_add(transit_ns)

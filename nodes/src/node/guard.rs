@@ -186,7 +186,10 @@ fn subscribe_view(
             };
             let built = SurrogateMessage::from_bytes(&sample.payload().to_bytes())
                 .map_err(anyhow::Error::from)
-                .and_then(|(msg, s)| Ok((msg, Envelope::new(&s)?)));
+                .and_then(|(msg, s)| {
+                    let envelope = Envelope::new(&s)?.with_field_of_view(msg.field_of_view)?;
+                    Ok((msg, envelope))
+                });
             let (msg, envelope) = match built {
                 Ok(built) => built,
                 Err(e) => {

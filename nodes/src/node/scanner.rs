@@ -132,10 +132,16 @@ fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene) -> Result<()> {
         // The simulator is the sensor: the cloud shows the scene at the time
         // read here, so its age counts from now (generation included).
         let sampled = Instant::now();
-        let points = scene.generate(start.elapsed().as_secs_f64() * args.time_scale)?;
-        let msg = CloudView::new(unix_ns(), sequence, &source, SensorPose::default(), &points)
-            .with_pipeline_ns(sampled.elapsed().as_nanos() as u64)
-            .aligned()?;
+        let time = start.elapsed().as_secs_f64() * args.time_scale;
+        let points = scene.generate(time)?;
+        let mut msg = CloudView::new(unix_ns(), sequence, &source, SensorPose::default(), &points)
+            .with_pipeline_ns(sampled.elapsed().as_nanos() as u64);
+        // A scan scene's scanner states where it looked; a sampled scene
+        // (the moving spheres) has no sensor and states nothing.
+        if let Some(fov) = scene.field_of_view(time)? {
+            msg = msg.with_field_of_view(fov)?;
+        }
+        let msg = msg.aligned()?;
         let payload = writer.encode(&msg)?;
         match publisher.put(payload).wait() {
             Ok(()) => ctx.metrics.add("published", 1),

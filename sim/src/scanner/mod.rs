@@ -19,6 +19,7 @@ use rand::Rng;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use shroud_core::format::TriangleMesh;
+use shroud_core::message::{Aperture, FieldOfView};
 use std::f64::consts::{PI, TAU};
 
 /// Stream tag separating the scanner's random numbers from the scenes'.
@@ -219,6 +220,39 @@ impl RangeScanner {
     }
 
     /// Scans the mesh behind `bvh` at `time` seconds.
+    /// The region this scanner's rays span at `time` seconds, as a cloud
+    /// states it: a rectangular pyramid from the optical centre along the
+    /// viewing direction, cut at `max_range`. Its half angles are those of
+    /// the outermost rays (half a ray spacing inside the nominal field of
+    /// view; the spacing itself when there is one ray across), so it holds
+    /// no space between the rays and the nominal edge, which no ray crossed.
+    /// The rays lie on an azimuth-elevation grid, which holds the pyramid:
+    /// a direction within the pyramid's vertical half angle has an elevation
+    /// at most that.
+    pub fn field_of_view(&self, time: f64) -> Result<FieldOfView, SceneError> {
+        self.validate()?;
+        let sensor = self.pose.sensor(time)?;
+        let (rays, rows) = self.layout();
+        let outermost = |fov: f64, n: usize| {
+            let n = n.max(1) as f64;
+            0.5 * fov * (1.0 - 1.0 / n).max(1.0 / n)
+        };
+        // Rays start at the optical centre rounded to f32, as `scan` casts them.
+        let apex = sensor.position.map(|c| f64::from(c as f32));
+        Ok(FieldOfView {
+            apex,
+            axis: sensor.forward,
+            aperture: Aperture::Rectangle {
+                right: sensor.right,
+                half_angles: [
+                    outermost(self.horizontal_fov, rays / rows),
+                    outermost(self.vertical_fov, rows),
+                ],
+            },
+            max_range: self.max_range,
+        })
+    }
+
     pub fn scan(&self, bvh: &Bvh, time: f64) -> Result<ScanFrame, SceneError> {
         check_finite("time", time)?;
         self.validate()?;

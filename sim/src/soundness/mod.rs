@@ -73,6 +73,12 @@ pub struct SoundnessParams {
     /// Sensors cast parallel rays along their look direction (the sensor
     /// the guard's views assume) instead of rays from a point.
     pub parallel_rays: bool,
+    /// Clouds state their sensor's field of view (a perspective sensor's
+    /// cone or frustum and range), as a depth camera's driver can; the guard
+    /// then counts space outside it as unseen. Off: the clouds say nothing
+    /// and kept triangles at the edge of a view vouch for space the sensor
+    /// never looked at.
+    pub state_field_of_view: bool,
     /// The guard's policy for unseen space. `Stop` is the guarantee under
     /// test; `Ignore` (unsound with views of different clouds) is the
     /// negative control that shows the harness catches optimism.
@@ -93,6 +99,7 @@ impl Default for SoundnessParams {
             sandwich_share: 0.5,
             black_share: 0.15,
             parallel_rays: false,
+            state_field_of_view: true,
             unobserved: UnobservedPolicy::Stop,
         }
     }

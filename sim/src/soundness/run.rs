@@ -88,7 +88,14 @@ fn views_of(scene: &SoundnessScene, params: &SoundnessParams) -> Vec<View> {
                     // A fit or envelope error leaves the sensor without a
                     // view: the guard then simply has one view fewer.
                     let surrogate = fit_surrogate(&cloud, &options).ok()?;
-                    Envelope::new(&surrogate).ok()
+                    let stated = params
+                        .state_field_of_view
+                        .then(|| setup.sensor.stated_field_of_view())
+                        .flatten();
+                    Envelope::new(&surrogate)
+                        .ok()?
+                        .with_field_of_view(stated)
+                        .ok()
                 })
                 .flatten();
             View {

@@ -5,6 +5,7 @@
 use super::rays::{cast, Hit};
 use super::solids::Solid;
 use glam::DVec3;
+use shroud_core::message;
 
 /// The rays a sensor casts, as bounds on the image plane at unit distance
 /// (tangents of the half angles).
@@ -210,6 +211,28 @@ impl Sensor {
         };
         let dist = to.length();
         dist == 0.0 || cast(o, to / dist, solids, self.time).is_none_or(|(s, _)| s > dist)
+    }
+
+    /// The field of view as its driver would state it in the cloud: the
+    /// cone or frustum from the origin, cut at the range. `None` for
+    /// parallel rays, whose view is a prism, not a region from a point.
+    pub fn stated_field_of_view(&self) -> Option<message::FieldOfView> {
+        if self.projection != Projection::Perspective {
+            return None;
+        }
+        let aperture = match self.fov {
+            FieldOfView::Cone { half_angle } => message::Aperture::Cone { half_angle },
+            FieldOfView::Frustum { half_x, half_y } => message::Aperture::Rectangle {
+                right: self.right.to_array(),
+                half_angles: [half_x, half_y],
+            },
+        };
+        Some(message::FieldOfView {
+            apex: self.origin.to_array(),
+            axis: self.look.to_array(),
+            aperture,
+            max_range: self.max_range,
+        })
     }
 
     /// Whether `p` is inside the field of view and within range (whatever
