@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{alive, assert_all_gone, free_port, hub, wiring, Proc};
+use common::{alive, assert_all_gone, free_port, hub, hub_on_free_port, wiring, Proc};
 use shroud_core::message::{CloudMessage, NodeStatusMessage, SurrogateMessage};
 use shroud_core::query::{Classify, PointClass, SurrogateView};
 use std::collections::HashMap;
@@ -142,4 +142,82 @@ fn fit_node_publishes_certified_surrogates_and_survives_garbage() {
     assert!(!fit.output().contains("panicked"));
     assert_all_gone(&pids, Duration::from_secs(5));
     assert!(!alive(pids[0]));
+}
+
+/// A scan scene's scanner states its field of view in every cloud, and the
+/// fit node hands it on in the surrogate of that cloud, for the guard to
+/// count the space outside it as unseen. Every point of the cloud lies within
+/// the stated range of the optical centre, in front of it.
+#[test]
+fn the_field_of_view_travels_from_the_scanner_through_the_fit() {
+    let (endpoint, session) = hub_on_free_port();
+    let ns = "e2e-fov";
+    let clouds = session
+        .declare_subscriber(format!("shroud/{ns}/cloud/scan"))
+        .wait()
+        .unwrap();
+    let surrogates = session
+        .declare_subscriber(format!("shroud/{ns}/surrogate/scan"))
+        .wait()
+        .unwrap();
+    let w = wiring(&endpoint, ns);
+    let fit = Proc::start(
+        &[
+            &["node", "fit", "--input", "scan", "--grid", "12x12"][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let scanner = Proc::start(
+        &[
+            &[
+                "node",
+                "scanner",
+                "--scene",
+                "scan-table-top",
+                "--points",
+                "3000",
+                "--rate",
+                "10",
+                "--stream",
+                "scan",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let mut stated = HashMap::new();
+    let deadline = Instant::now() + LONG;
+    let (mut matched, mut surrogates_heard) = (0, 0);
+    while matched < 3 {
+        assert!(
+            Instant::now() < deadline,
+            "no surrogate with its cloud's field of view ({} clouds, {surrogates_heard} surrogates); fit:\n{}\nscanner:\n{}",
+            stated.len(),
+            fit.output(),
+            scanner.output()
+        );
+        let Ok(Some(sample)) = surrogates.recv_timeout(Duration::from_millis(200)) else {
+            continue;
+        };
+        // The cloud a surrogate answers was published before it: drain the
+        // clouds after the surrogate arrived.
+        while let Ok(Some(cloud)) = clouds.try_recv() {
+            let msg = CloudMessage::from_bytes(&cloud.payload().to_bytes()).unwrap();
+            let fov = msg.field_of_view.expect("a scan states its field of view");
+            let apex = glam::DVec3::from_array(fov.apex);
+            let axis = glam::DVec3::from_array(fov.axis);
+            for p in msg.point_array().unwrap() {
+                let d = glam::DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) - apex;
+                assert!(d.length() <= fov.max_range * (1.0 + 1e-6) && d.dot(axis) > 0.0);
+            }
+            stated.insert(msg.sequence, fov);
+        }
+        surrogates_heard += 1;
+        let (msg, _) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+        if let Some(fov) = stated.get(&msg.source_sequence) {
+            assert_eq!(msg.field_of_view.as_ref(), Some(fov));
+            matched += 1;
+        }
+    }
 }

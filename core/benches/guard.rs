@@ -3,12 +3,16 @@
 //! moving-spheres scene, and checking the demo arm (50 spheres, from
 //! `launch/arms/demo_arm.toml`) against it in poses far from and near the clouds,
 //! and the whole decision ([`CollisionGuard::decide`]) over one view and over
-//! three (top, front, side sandwiches of the same cloud).
+//! three (top, front, side sandwiches of the same cloud): judging by the
+//! occupied space alone (`ignore`), counting unseen space (`stop`, the
+//! default), and counting the space outside a stated field of view as well
+//! (`stop_fov`: a cone from 4 m back along each view's direction).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use shroud_core::guard::{
     check_arm, ArmFile, CollisionGuard, Envelope, GuardPolicy, SurrogateInput, UnobservedPolicy,
 };
+use shroud_core::message::{Aperture, FieldOfView};
 use shroud_core::surrogate::{fit_surrogate, FitOptions, Sides};
 use std::hint::black_box;
 
@@ -85,30 +89,56 @@ fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
         .collect();
     let pose = file.arm.forward(&OVER).expect("valid joint values");
     let links: Vec<String> = file.arm.links().iter().map(|l| l.name.clone()).collect();
-    let policy = GuardPolicy {
-        max_skew_ns: u64::MAX,
-        unobserved: UnobservedPolicy::Ignore,
-        ..GuardPolicy::default()
-    };
     let mut group = c.benchmark_group("guard_views");
+    let cases = [
+        ("ignore", UnobservedPolicy::Ignore, false),
+        ("stop", UnobservedPolicy::Stop, false),
+        ("stop_fov", UnobservedPolicy::Stop, true),
+    ];
     for count in [1, 3] {
-        let names = (0..count).map(|i| format!("view{i}")).collect();
-        let mut guard =
-            CollisionGuard::new(names, links.clone(), policy, file.guard).expect("valid settings");
-        for (view, input) in inputs.iter().take(count).enumerate() {
-            guard.accept(view, input.clone(), 0, 0).expect("fresh");
+        for (label, unobserved, fov) in cases {
+            let policy = GuardPolicy {
+                max_skew_ns: u64::MAX,
+                unobserved,
+                ..GuardPolicy::default()
+            };
+            let names = (0..count).map(|i| format!("view{i}")).collect();
+            let mut guard = CollisionGuard::new(names, links.clone(), policy, file.guard)
+                .expect("valid settings");
+            for (view, input) in inputs.iter().take(count).enumerate() {
+                let mut input = input.clone();
+                if fov {
+                    input.envelope = input
+                        .envelope
+                        .with_field_of_view(Some(cone_along(directions[view])))
+                        .expect("a valid field of view");
+                }
+                guard.accept(view, input, 0, 0).expect("fresh");
+            }
+            let decision = guard.decide(&pose.shapes, 0).expect("valid pose");
+            eprintln!(
+                "{count} view(s), {label}: {:?}, min clearance {:.4}",
+                decision.verdict,
+                decision.report.as_ref().map_or(0.0, |r| r.min_clearance)
+            );
+            group.bench_function(format!("decide_50_spheres_{count}_views_{label}"), |b| {
+                b.iter(|| guard.decide(black_box(&pose.shapes), 0))
+            });
         }
-        let decision = guard.decide(&pose.shapes, 0).expect("valid pose");
-        eprintln!(
-            "{count} view(s): {:?}, min clearance {:.4}",
-            decision.verdict,
-            decision.report.as_ref().map_or(0.0, |r| r.min_clearance)
-        );
-        group.bench_function(format!("decide_50_spheres_{count}_views"), |b| {
-            b.iter(|| guard.decide(black_box(&pose.shapes), 0))
-        });
     }
     group.finish();
+}
+
+/// A 40-degree cone from 4 m back along `direction`, 8 m deep.
+fn cone_along(direction: [f64; 3]) -> FieldOfView {
+    FieldOfView {
+        apex: direction.map(|d| -4.0 * d),
+        axis: direction,
+        aperture: Aperture::Cone {
+            half_angle: 40f64.to_radians(),
+        },
+        max_range: 8.0,
+    }
 }
 
 criterion_group!(benches, guard);

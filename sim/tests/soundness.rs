@@ -7,10 +7,12 @@
 //!   column over their footprint, i.e. parallel rays, and no black solids) a
 //!   `clear` must never be optimistic, and the run must not be trivially
 //!   safe: clear verdicts and stops, near and far.
-//! - In the realistic scenes (perspective sensors, black solids) optimistic
-//!   verdicts exist (docs/guard-soundness.md); each must fall in a class the
-//!   guard documents as outside its guarantee, never timing, sampling or
-//!   anything else.
+//! - Perspective sensors whose clouds state their field of view, without
+//!   black solids: no optimistic `clear` either. Without the stated field of
+//!   view the field-of-view edge class appears: what the statement fixes.
+//! - In the realistic scenes (black solids too) optimistic verdicts exist
+//!   (docs/guard-soundness.md); each must fall in a class the guard documents
+//!   as outside its guarantee, never timing, sampling or anything else.
 //! - The negative control: a guard that ignores unseen space is caught.
 
 use shroud_core::guard::UnobservedPolicy;
@@ -77,6 +79,34 @@ fn no_clear_verdict_is_optimistic_within_the_assumptions() {
 }
 
 #[test]
+fn perspective_sensors_stating_their_field_of_view_are_never_optimistic() {
+    let params = SoundnessParams {
+        black_share: 0.0,
+        ..SoundnessParams::default()
+    };
+    let report = run(&params, CASES, SEED).expect("the run runs");
+    eprintln!(
+        "verdicts {:?}, conservativeness {:?}",
+        report.verdicts,
+        report.conservativeness()
+    );
+    assert_eq!(report.contacts, 0, "{}", findings(&report));
+    assert_eq!(report.optimistic, 0, "{}", findings(&report));
+    assert!(report.verdicts.clear > 0 && report.verdicts.stop > 0);
+    // The control: the same scenes with clouds that do not state it.
+    let unstated = SoundnessParams {
+        state_field_of_view: false,
+        ..params
+    };
+    let report = run(&unstated, CASES, SEED).expect("the run runs");
+    let edge = report.classes[FindingClass::FieldOfView as usize];
+    assert!(
+        edge > 0,
+        "no field-of-view edge finding without the statement"
+    );
+}
+
+#[test]
 fn realistic_scenes_fail_only_outside_the_guarantee() {
     let params = SoundnessParams::default();
     let report = run(&params, CASES, SEED).expect("the run runs");
@@ -86,6 +116,7 @@ fn realistic_scenes_fail_only_outside_the_guarantee() {
     );
     assert_eq!(report.classes.iter().sum::<u64>(), report.optimistic);
     for class in [
+        FindingClass::FieldOfView,
         FindingClass::Timing,
         FindingClass::Sampling,
         FindingClass::Other,

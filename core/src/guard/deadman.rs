@@ -78,18 +78,25 @@ impl Deadman {
     /// `requested` (seconds) or three periods, never longer than the guard's
     /// `horizon` (seconds), the time after a decision its allowance covers.
     /// A default longer than the horizon is cut to it; a requested one is
-    /// refused.
+    /// refused, and so is a deadline of 0 (a horizon of 0), under which the
+    /// consumer could never move.
     pub fn deadline_for(
         period_s: f64,
         requested: Option<f64>,
         horizon: f64,
     ) -> Result<f64, crate::guard::GuardError> {
-        match requested {
+        use crate::guard::GuardError;
+        let deadline = match requested {
             Some(deadline) if deadline > horizon => {
-                Err(crate::guard::GuardError::DeadlineBeyondHorizon { deadline, horizon })
+                return Err(GuardError::DeadlineBeyondHorizon { deadline, horizon })
             }
-            Some(deadline) => Ok(deadline),
-            None => Ok((3.0 * period_s).min(horizon)),
+            Some(deadline) => deadline,
+            None => (3.0 * period_s).min(horizon),
+        };
+        if deadline > 0.0 {
+            Ok(deadline)
+        } else {
+            Err(GuardError::NoTimeToMove { deadline, horizon })
         }
     }
 
@@ -182,6 +189,11 @@ mod tests {
         assert_eq!(Deadman::deadline_for(0.1, Some(0.05), 0.1).unwrap(), 0.05);
         let refused = Deadman::deadline_for(0.1, Some(0.5), 0.1).unwrap_err();
         assert!(refused.to_string().contains("horizon"), "{refused}");
+        // A horizon of 0 would leave the arm halted for ever: refused by name.
+        for (requested, horizon) in [(None, 0.0), (Some(0.0), 0.1), (Some(0.0), 0.0)] {
+            let refused = Deadman::deadline_for(0.02, requested, horizon).unwrap_err();
+            assert!(refused.to_string().contains("no time to move"), "{refused}");
+        }
     }
 
     fn send(d: &mut Deadman, s: u64, at: u64) {

@@ -263,7 +263,6 @@ impl Envelope {
         self.margin
     }
 
-    /// Deviation of the frame from orthonormal (see the field).
     /// The same envelope, knowing the region its cloud's sensor covered (or
     /// not): space outside it counts as unseen. Refused unless it is convex.
     pub fn with_field_of_view(mut self, fov: Option<FieldOfView>) -> Result<Self, GuardError> {
@@ -280,6 +279,7 @@ impl Envelope {
         self.field_of_view.as_ref()
     }
 
+    /// Deviation of the frame from orthonormal (see the field).
     pub(crate) fn frame_error(&self) -> f64 {
         self.frame_error
     }

@@ -65,6 +65,12 @@ pub enum GuardError {
     /// accounts for.
     #[error("a deadline of {deadline} s exceeds the guard's horizon of {horizon} s")]
     DeadlineBeyondHorizon { deadline: f64, horizon: f64 },
+    /// A deadline of 0 (a horizon of 0, say): the consumer could never move.
+    #[error(
+        "a deadline of {deadline} s leaves no time to move on a clear verdict \
+         (the guard's horizon is {horizon} s: set the arm file's [guard] horizon above 0)"
+    )]
+    NoTimeToMove { deadline: f64, horizon: f64 },
     #[error("the time must be finite, got {0}")]
     BadTime(f64),
     #[error("guard config: {0}")]

@@ -47,6 +47,8 @@ fn describe_cloud(msg: &CloudMessage) -> Result<Value, MessageError> {
         "sequence": msg.sequence,
         "source": msg.source,
         "pose": msg.pose,
+        "position_error_m": msg.position_error_m,
+        "field_of_view": msg.field_of_view,
         "points": points.len(),
         "bounds": bounds,
         "intensity": msg.intensity.is_some(),
@@ -88,6 +90,8 @@ fn describe_surrogate(msg: &SurrogateMessage) -> Value {
         "cells": msg.trim.len(),
         "surfaces": surfaces,
         "fit_ms": msg.fit_ns as f64 / 1e6,
+        "position_error_m": msg.position_error_m,
+        "field_of_view": msg.field_of_view,
     })
 }
 
@@ -108,6 +112,11 @@ mod tests {
         let v = describe(TopicKind::Cloud, &msg.to_bytes().unwrap()).unwrap();
         assert_eq!(v["points"], 2);
         assert_eq!(v["bounds"]["max"][0], 3.0);
+        assert!(v["field_of_view"].is_null(), "{v}");
+        let mut msg = msg;
+        msg.field_of_view = Some(crate::message::sample_field_of_view());
+        let v = describe(TopicKind::Cloud, &msg.to_bytes().unwrap()).unwrap();
+        assert_eq!(v["field_of_view"]["max_range"], 4.0, "{v}");
         assert!(describe(TopicKind::Surrogate, &msg.to_bytes().unwrap()).is_err());
         assert!(describe(TopicKind::Status, b"\x00garbage").is_err());
     }

@@ -126,6 +126,142 @@ mod tests {
         cone.validate().unwrap();
     }
 
+    fn any_f64() -> impl proptest::strategy::Strategy<Value = f64> {
+        use proptest::prelude::*;
+        prop_oneof![
+            -10.0..10.0f64,
+            Just(f64::NAN),
+            Just(f64::INFINITY),
+            Just(-0.0),
+            any::<f64>()
+        ]
+    }
+
+    /// A field of view near a valid one: unit directions (the right one
+    /// perpendicular) from random vectors, then some values replaced by
+    /// anything, so that both sides of every check are reached.
+    fn near_valid() -> impl proptest::strategy::Strategy<Value = FieldOfView> {
+        use proptest::prelude::*;
+        let vector = proptest::array::uniform3(-1.0..1.0f64);
+        (
+            vector.clone(),
+            vector,
+            0.01..1.5f64,
+            0.01..1.5f64,
+            0.1..9.0f64,
+            any::<bool>(),
+        )
+            .prop_filter_map("degenerate", |(a, r, h0, h1, range, cone)| {
+                let norm = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let axis = a.map(|x| x / norm(a));
+                let dot: f64 = (0..3).map(|i| r[i] * axis[i]).sum();
+                let r: [f64; 3] = std::array::from_fn(|i| r[i] - dot * axis[i]);
+                let right = r.map(|x| x / norm(r));
+                (norm(a) > 0.1 && norm(r) > 0.1).then_some(FieldOfView {
+                    apex: a,
+                    axis,
+                    aperture: if cone {
+                        Aperture::Cone { half_angle: h0 }
+                    } else {
+                        Aperture::Rectangle {
+                            right,
+                            half_angles: [h0, h1],
+                        }
+                    },
+                    max_range: range,
+                })
+            })
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn valid_fields_of_view_are_accepted_and_round_trip(fov in near_valid()) {
+            proptest::prop_assert!(fov.validate().is_ok(), "{fov:?}");
+            let bytes = rmp_serde::to_vec_named(&fov).unwrap();
+            let back: FieldOfView = rmp_serde::from_slice(&bytes).unwrap();
+            proptest::prop_assert_eq!(back, fov);
+            let depth = crate::guard::depth_inside(&fov, glam::DVec3::from_array(fov.apex));
+            proptest::prop_assert!(depth.is_finite() && depth <= 0.0);
+        }
+
+        #[test]
+        fn a_spoiled_value_is_refused(fov in near_valid(), which in 0..5usize, bad in any_f64()) {
+            let mut fov = fov;
+            let spoiled = match which {
+                0 => { fov.apex[1] = bad; !bad.is_finite() }
+                1 => {
+                    fov.axis[2] = bad;
+                    let norm = fov.axis.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    !(norm.is_finite() && (norm - 1.0).abs() <= UNIT_TOLERANCE)
+                }
+                2 => { fov.max_range = bad; !(bad.is_finite() && bad > 0.0) }
+                3 => match &mut fov.aperture {
+                    Aperture::Cone { half_angle } => {
+                        *half_angle = bad;
+                        !(bad > 0.0 && bad < std::f64::consts::FRAC_PI_2)
+                    }
+                    Aperture::Rectangle { half_angles, .. } => {
+                        half_angles[1] = bad;
+                        !(bad > 0.0 && bad < std::f64::consts::FRAC_PI_2)
+                    }
+                },
+                _ => match &mut fov.aperture {
+                    Aperture::Rectangle { right, .. } => { *right = fov.axis; true }
+                    Aperture::Cone { .. } => false,
+                },
+            };
+            if spoiled {
+                proptest::prop_assert!(fov.validate().is_err(), "{fov:?}");
+            }
+        }
+
+        /// Whatever numbers a stranger sends, validation answers without a
+        /// panic, and what it accepts survives the wire unchanged.
+        #[test]
+        fn any_field_of_view_is_judged_and_accepted_ones_round_trip(
+            apex in proptest::array::uniform3(any_f64()),
+            axis in proptest::array::uniform3(any_f64()),
+            right in proptest::array::uniform3(any_f64()),
+            angles in proptest::array::uniform2(any_f64()),
+            range in any_f64(),
+            cone in proptest::bool::ANY,
+        ) {
+            let aperture = if cone {
+                Aperture::Cone { half_angle: angles[0] }
+            } else {
+                Aperture::Rectangle { right, half_angles: angles }
+            };
+            let fov = FieldOfView { apex, axis, aperture, max_range: range };
+            if fov.validate().is_ok() {
+                let bytes = rmp_serde::to_vec_named(&fov).unwrap();
+                let back: FieldOfView = rmp_serde::from_slice(&bytes).unwrap();
+                proptest::prop_assert_eq!(back, fov);
+            }
+        }
+    }
+
+    /// The wire layout `core/FORMATS.md` documents, read back generically.
+    #[test]
+    fn the_wire_layout_is_the_documented_one() {
+        let cone = FieldOfView {
+            aperture: Aperture::Cone { half_angle: 0.5 },
+            ..sample_field_of_view()
+        };
+        let read = |fov: &FieldOfView| -> serde_json::Value {
+            rmp_serde::from_slice(&rmp_serde::to_vec_named(fov).unwrap()).unwrap()
+        };
+        assert_eq!(
+            read(&sample_field_of_view()),
+            serde_json::json!({"apex": [0.0, 0.0, 2.0], "axis": [0.0, 0.0, -1.0],
+                "aperture": {"rectangle": {"right": [1.0, 0.0, 0.0], "half_angles": [0.6, 0.45]}},
+                "max_range": 4.0})
+        );
+        assert_eq!(
+            read(&cone)["aperture"],
+            serde_json::json!({"cone": {"half_angle": 0.5}})
+        );
+    }
+
     #[test]
     fn every_defect_is_named() {
         let base = sample_field_of_view();

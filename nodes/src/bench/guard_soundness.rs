@@ -117,7 +117,11 @@ fn table(r: &SoundnessReport, p: &SoundnessParams, args: &BenchArgs, wall: f64) 
                 p.sandwich_share,
                 p.black_share,
                 if p.parallel_rays { "parallel" } else { "perspective" },
-                if p.state_field_of_view { "stated" } else { "not stated" }
+                match (p.parallel_rays, p.state_field_of_view) {
+                    (true, _) => "not stated (parallel rays)",
+                    (false, true) => "stated",
+                    (false, false) => "not stated",
+                }
             ),
         ),
         (

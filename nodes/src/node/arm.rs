@@ -178,11 +178,13 @@ fn on_verdict(ctx: &NodeContext, verdicts: &Mutex<Verdicts>, msg: &CollisionMess
 }
 
 /// Halts as they happen: `halts` counts them, `halts_<cause>` counts each
-/// halt under every cause that held it, they are logged with their reason and
-/// their length, and the time spent halted is in the status.
+/// halt once under every cause that held it, they are logged with their
+/// reason and their length, and the time spent halted is in the status.
 #[derive(Default)]
 struct HaltLog {
     since: Option<(Instant, GuardVerdict)>,
+    /// The causes of the current halt counted so far.
+    counted: Vec<GuardVerdict>,
     halted_s: f64,
 }
 
@@ -191,21 +193,17 @@ impl HaltLog {
         match (motion, self.since) {
             (Motion::Halt(v), None) => {
                 ctx.metrics.add("halts", 1);
-                ctx.metrics.add(v.halt_counter(), 1);
-                let why = if v == GuardVerdict::NoVerdict {
-                    "no-verdict: no fresh clear verdict within the deadline"
-                } else {
-                    reason
-                };
-                tracing::warn!("halted: {why}");
+                self.counted.clear();
+                self.count_cause(ctx, v);
+                tracing::warn!("halted: {}", Self::why(v, reason));
                 self.since = Some((now, v));
             }
             // A halt whose cause changes (a stop that turns stale when the
-            // sensor goes away) counts under its new cause too, so each
+            // sensor goes away) counts under its new cause too, once, so each
             // `halts_<cause>` says whether that cause ever held the arm.
             (Motion::Halt(v), Some((start, was))) if v != was => {
-                ctx.metrics.add(v.halt_counter(), 1);
-                tracing::warn!("still halted, now {}: {reason}", v.name());
+                self.count_cause(ctx, v);
+                tracing::warn!("still halted, now {}", Self::why(v, reason));
                 self.since = Some((start, v));
             }
             (Motion::Move, Some((start, v))) => {
@@ -223,5 +221,20 @@ impl HaltLog {
         m.set("halted", if self.since.is_some() { 1.0 } else { 0.0 });
         m.set("halted_s", self.halted_s + current);
         m.set("halt_current_s", current);
+    }
+
+    fn count_cause(&mut self, ctx: &NodeContext, v: GuardVerdict) {
+        if !self.counted.contains(&v) {
+            self.counted.push(v);
+            ctx.metrics.add(v.halt_counter(), 1);
+        }
+    }
+
+    fn why(v: GuardVerdict, reason: &str) -> &str {
+        if v == GuardVerdict::NoVerdict {
+            "no-verdict: no fresh clear verdict within the deadline"
+        } else {
+            reason
+        }
     }
 }

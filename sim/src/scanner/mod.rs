@@ -219,13 +219,13 @@ impl RangeScanner {
         })
     }
 
-    /// Scans the mesh behind `bvh` at `time` seconds.
     /// The region this scanner's rays span at `time` seconds, as a cloud
     /// states it: a rectangular pyramid from the optical centre along the
     /// viewing direction, cut at `max_range`. Its half angles are those of
     /// the outermost rays (half a ray spacing inside the nominal field of
-    /// view; the spacing itself when there is one ray across), so it holds
-    /// no space between the rays and the nominal edge, which no ray crossed.
+    /// view; a sliver of 1e-9 rad when one ray spans the direction: a planar
+    /// scan states a plane), so it holds no space between the rays and the
+    /// nominal edge, which no ray crossed.
     /// The rays lie on an azimuth-elevation grid, which holds the pyramid:
     /// a direction within the pyramid's vertical half angle has an elevation
     /// at most that.
@@ -234,8 +234,11 @@ impl RangeScanner {
         let sensor = self.pose.sensor(time)?;
         let (rays, rows) = self.layout();
         let outermost = |fov: f64, n: usize| {
-            let n = n.max(1) as f64;
-            0.5 * fov * (1.0 - 1.0 / n).max(1.0 / n)
+            if n <= 1 {
+                SLIVER
+            } else {
+                0.5 * fov * (1.0 - 1.0 / n as f64)
+            }
         };
         // Rays start at the optical centre rounded to f32, as `scan` casts them.
         let apex = sensor.position.map(|c| f64::from(c as f32));
@@ -253,6 +256,7 @@ impl RangeScanner {
         })
     }
 
+    /// Scans the mesh behind `bvh` at `time` seconds.
     pub fn scan(&self, bvh: &Bvh, time: f64) -> Result<ScanFrame, SceneError> {
         check_finite("time", time)?;
         self.validate()?;
@@ -326,6 +330,10 @@ impl RangeScanner {
     }
 }
 
+/// The half angle a stated field of view takes across a single row or
+/// column of rays (a field of view needs a positive one).
+const SLIVER: f64 = 1e-9;
+
 /// A field of view must lie strictly between 0 and π.
 fn check_fov(parameter: &str, value: f64) -> Result<(), SceneError> {
     check_finite(parameter, value)?;
@@ -386,5 +394,41 @@ mod tests {
             rows: 3,
         };
         assert_eq!((scanner.grid(), scanner.rays()), ([7, 3], 21));
+    }
+
+    /// The stated field of view holds no direction outside the rays' angular
+    /// span: every direction inside it (by the guard's own depth) has an
+    /// azimuth and an elevation within those of the outermost rays. One ray
+    /// across states a sliver.
+    #[test]
+    fn the_stated_field_of_view_lies_within_the_rays() {
+        use shroud_core::guard::depth_inside;
+        for (columns, rows) in [(1, 1), (2, 3), (7, 1), (40, 30)] {
+            let scanner = RangeScanner {
+                resolution: ScanResolution::Grid { columns, rows },
+                horizontal_fov: 1.2,
+                vertical_fov: 0.9,
+                ..RangeScanner::default()
+            };
+            let fov = scanner.field_of_view(0.7).unwrap();
+            fov.validate().unwrap();
+            let sensor = scanner.pose.sensor(0.7).unwrap();
+            // The outermost rays' angles, as `scan` spreads them.
+            let span = |fov: f64, n: usize| fov * (0.5 - 0.5 / n as f64);
+            let (az, el) = (span(1.2, columns), span(0.9, rows));
+            let mut rng = stream_rng(3, &[]);
+            let mut inside = 0;
+            for _ in 0..20_000 {
+                let (a, e) = (rng.random_range(-0.8..0.8), rng.random_range(-0.6..0.6));
+                let d = sensor.direction(f64::sin_cos(a), f64::sin_cos(e));
+                let p: [f64; 3] = std::array::from_fn(|k| fov.apex[k] + 3.0 * d[k]);
+                if depth_inside(&fov, glam::DVec3::from_array(p)) > 0.0 {
+                    inside += 1;
+                    assert!(a.abs() <= az + 1e-9 && e.abs() <= el + 1e-9, "{a} {e}");
+                }
+            }
+            // Not vacuous where the rays span an area.
+            assert_eq!(inside > 0, columns > 1 && rows > 1, "{columns}x{rows}");
+        }
     }
 }

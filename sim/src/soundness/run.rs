@@ -62,6 +62,57 @@ pub fn run(
         .try_reduce(SoundnessReport::empty, |a, b| Ok(a.merged(b)))
 }
 
+/// Directions around a core sample along which the shape, grown by the stop
+/// distance, must stay inside a sensor's field of view for the pose to count
+/// as in seen space: the axes and the diagonals (normalised where used).
+const AROUND: [DVec3; 14] = [
+    DVec3::X,
+    DVec3::NEG_X,
+    DVec3::Y,
+    DVec3::NEG_Y,
+    DVec3::Z,
+    DVec3::NEG_Z,
+    DVec3::new(1.0, 1.0, 1.0),
+    DVec3::new(1.0, 1.0, -1.0),
+    DVec3::new(1.0, -1.0, 1.0),
+    DVec3::new(1.0, -1.0, -1.0),
+    DVec3::new(-1.0, 1.0, 1.0),
+    DVec3::new(-1.0, 1.0, -1.0),
+    DVec3::new(-1.0, -1.0, 1.0),
+    DVec3::new(-1.0, -1.0, -1.0),
+];
+
+/// Whether every shape, grown by the stop distance, lies in space some view
+/// saw free and that nothing unseen can have reached by the end of the
+/// verdict: each core sample in a sensor's line of sight at its scan time,
+/// and the ball around it of the shape's radius, the stop distance and the
+/// way an obstacle at the speed bound travels from the scan until the
+/// horizon (along [`AROUND`]) inside that sensor's field of view and range.
+/// A pose outside it has no provable `clear`, so it does not count towards
+/// conservativeness.
+fn in_seen_space(
+    cores: &[Core],
+    views: &[View],
+    scene: &SoundnessScene,
+    params: &SoundnessParams,
+    decision: f64,
+) -> bool {
+    cores.iter().all(|c| {
+        c.samples().iter().all(|&p| {
+            views.iter().any(|v| {
+                let sensor = &v.setup.sensor;
+                let since = (decision - sensor.time).max(0.0) + params.horizon;
+                let reach = c.radius + params.stop_distance + params.max_obstacle_speed * since;
+                v.envelope.is_some()
+                    && sensor.sees(p, &scene.solids)
+                    && AROUND
+                        .iter()
+                        .all(|d| sensor.covers(p + d.normalize() * reach))
+            })
+        })
+    })
+}
+
 /// One sensor's contribution: its cloud and, if it could be fitted, its view.
 struct View {
     setup: SensorSetup,
@@ -207,16 +258,10 @@ pub fn run_case(
         let q = random_configuration(arm, &mut rng);
         let pose = arm.forward(&q)?;
         let cores: Vec<Core> = pose.shapes.iter().map(Core::of).collect();
-        let in_view = cores.iter().all(|c| {
-            c.samples().iter().all(|&p| {
-                views
-                    .iter()
-                    .any(|v| v.envelope.is_some() && v.setup.sensor.sees(p, &scene.solids))
-            })
-        });
         for _ in 0..params.timings_per_pose.min(remaining) {
             remaining -= 1;
             let t = last_arrival + rng.random_range(0.0..=MAX_DECISION_DELAY);
+            let in_view = in_seen_space(&cores, &views, &scene, params, t);
             let decision = guard.decide(&pose.shapes, mono_ns(t))?;
             let truths: Vec<(f64, Option<usize>)> = cores
                 .iter()

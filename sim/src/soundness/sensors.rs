@@ -214,17 +214,27 @@ impl Sensor {
     }
 
     /// The field of view as its driver would state it in the cloud: the
-    /// cone or frustum from the origin, cut at the range. `None` for
-    /// parallel rays, whose view is a prism, not a region from a point.
+    /// cone or frustum from the origin, cut at the range, shrunk to the hull
+    /// of the rays it casts (no space between the outermost rays and the
+    /// nominal edge, which no ray crossed). On the image plane a frustum's
+    /// outermost rays are the last grid lines inside it; a cone's grid holds
+    /// every disc `diagonal` smaller than the cone's (a grid cell with a point
+    /// in that disc has all four corners in the cone's). `None` for parallel
+    /// rays, whose view is a prism, not a region from a point. Rays that span
+    /// no area state a sliver (1e-9 rad).
     pub fn stated_field_of_view(&self) -> Option<message::FieldOfView> {
         if self.projection != Projection::Perspective {
             return None;
         }
+        let angle = |tangent: f64| tangent.atan().max(1e-9);
+        let last_line = |half: f64| Self::half_count(half.tan(), self.step) as f64 * self.step;
         let aperture = match self.fov {
-            FieldOfView::Cone { half_angle } => message::Aperture::Cone { half_angle },
+            FieldOfView::Cone { half_angle } => message::Aperture::Cone {
+                half_angle: angle(half_angle.tan() - self.step * std::f64::consts::SQRT_2),
+            },
             FieldOfView::Frustum { half_x, half_y } => message::Aperture::Rectangle {
                 right: self.right.to_array(),
-                half_angles: [half_x, half_y],
+                half_angles: [angle(last_line(half_x)), angle(last_line(half_y))],
             },
         };
         Some(message::FieldOfView {

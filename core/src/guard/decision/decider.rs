@@ -63,7 +63,9 @@ impl CollisionGuard {
     /// subtracted, so `max_report` is raised to at least `stop_distance +
     /// max_obstacle_speed * (max_age + horizon)`: otherwise any surrogate
     /// older than `(max_report - stop_distance) / speed - horizon` would stop
-    /// the arm in empty space.
+    /// the arm in empty space. (A view's age includes its clock offset, so
+    /// `max_age` bounds it; each view's position error raises its own cap
+    /// when it is checked.)
     pub fn new(
         views: Vec<String>,
         links: Vec<String>,
@@ -176,7 +178,15 @@ impl CollisionGuard {
         }
         let mut reports = Vec::with_capacity(fresh.len());
         for h in &fresh {
-            let report = check_shapes(&h.input.envelope, shapes, self.links.len(), &self.config)?;
+            // A view whose cloud may be misplaced looks that much further
+            // (at most twice as far), so that subtracting the error from a
+            // capped clearance does not stop the arm in empty space.
+            let config = GuardConfig {
+                max_report: self.config.max_report
+                    + h.input.position_error.min(self.config.max_report),
+                ..self.config
+            };
+            let report = check_shapes(&h.input.envelope, shapes, self.links.len(), &config)?;
             reports.push(ViewReport {
                 report,
                 allowance: self.allowance(h, now_ns),

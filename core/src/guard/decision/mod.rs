@@ -11,10 +11,14 @@
 //!
 //! What the decision assumes (and what remains for the deployment to ensure):
 //! - a view saw the space above (along its direction) every kept triangle of
-//!   its domain: its cloud's sensor looked along the view's direction, from
-//!   outside the scene, and nothing it did not measure hides inside a kept
-//!   triangle below its line of sight (an occluded pocket smaller than a
-//!   triangle, a thin object between rays);
+//!   its domain: its sensor looked along the view's direction from outside
+//!   the scene, and nothing it did not measure hides inside a kept triangle (a
+//!   black object that returned no range, an occluded pocket smaller than a
+//!   triangle, a thin object between rays). When the cloud states its
+//!   sensor's field of view, space outside it counts as unseen
+//!   (`guard::field_of_view`), so the assumption is needed only inside it;
+//!   there, space behind an object as seen from an oblique sensor is still
+//!   taken as seen;
 //! - obstacles move no faster than [`GuardConfig::max_obstacle_speed`];
 //! - the consumer moves on a verdict no longer than
 //!   [`GuardConfig::horizon`] after sending the joint state it answers (its

@@ -253,6 +253,23 @@ fn the_allowance_runs_until_the_horizon_and_counts_the_position_error() {
     assert!((moving - (still - 0.2 * (age + 0.06))).abs() < 1e-12);
     let (_, misplaced) = clearance(0.0, 0.0, 0.03);
     assert!((misplaced - (still - 0.03)).abs() < 1e-12);
+    // Far from everything, a view with a position error looks that much
+    // further, so its bound stays at `max_report` instead of stopping the
+    // arm in empty space (0.2 - 0.16 would be below the stop distance).
+    let far = vec![sphere(1, [-0.5, 0.0, 1.6], 0.05)];
+    for error in [0.0, 0.16] {
+        let mut g = guard(&["top"], GuardPolicy::default());
+        let mut input = view(&points, TOP, 0);
+        input.position_error = error;
+        g.accept(0, input, 0, WALL).unwrap();
+        let d = g.decide(&far, 0).unwrap();
+        assert_eq!(d.verdict, GuardVerdict::Clear, "{error}: {}", d.reason);
+        let bound = d.report.unwrap().min_clearance;
+        assert!(
+            (bound - config().max_report).abs() < 1e-12,
+            "{error}: {bound}"
+        );
+    }
     // The demo's numbers: 1.3 m/s over a 60 ms deadline is 7.8 cm, more than
     // the 5 cm stop distance: a shape 10 cm clear at the decision stops.
     let (verdict, _) = clearance(1.3, 0.06, 0.0);
@@ -367,6 +384,68 @@ fn space_no_point_covers_inside_the_domain_is_unobserved() {
         let d = g.decide(&seen, 0).unwrap();
         assert_eq!(d.verdict, GuardVerdict::Clear, "{sides:?}: {}", d.reason);
     }
+}
+
+/// The floor is seen whole, but the sensor's cone from 1.5 m above its
+/// centre does not reach the corner at the height of the arm: with the field
+/// of view stated, a sphere there is unobserved, one on the axis is clear,
+/// and without it both are clear (the view's column vouches for the corner).
+#[test]
+fn space_outside_a_stated_field_of_view_is_unobserved() {
+    use crate::message::{Aperture, FieldOfView};
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
+    // Dense enough that no triangle of the 16x16 grid is empty.
+    let floor: Vec<[f32; 3]> = (0..20000)
+        .map(|_| {
+            [
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                0.0,
+            ]
+        })
+        .collect();
+    // 45 degrees: the floor's corners are 1.41 m off the axis at 1.5 m down,
+    // inside; at z = 1.0 (0.5 m down) the cone's radius is 0.5 m.
+    let fov = FieldOfView {
+        apex: [0.0, 0.0, 1.5],
+        axis: [0.0, 0.0, -1.0],
+        aperture: Aperture::Cone {
+            half_angle: std::f64::consts::FRAC_PI_4,
+        },
+        max_range: 5.0,
+    };
+    let corner = vec![sphere(1, [-0.8, -0.8, 1.0], 0.05)];
+    let axis = vec![sphere(1, [0.0, 0.0, 0.6], 0.05)];
+    let plain = view(&floor, TOP, 0);
+    let mut stated = plain.clone();
+    stated.envelope = stated.envelope.with_field_of_view(Some(fov)).unwrap();
+    let mut g = guard(&["top"], GuardPolicy::default());
+    g.accept(0, stated, 0, WALL).unwrap();
+    let d = g.decide(&corner, 0).unwrap();
+    assert_eq!(d.verdict, GuardVerdict::Unobserved, "{}", d.reason);
+    let d = g.decide(&axis, 0).unwrap();
+    assert_eq!(d.verdict, GuardVerdict::Clear, "{}", d.reason);
+    // Near the cone, the bound is the distance to it less the radius: at
+    // 0.5 m down and 0.3 m off the axis, (0.5 - 0.3) sin(45 deg) away.
+    let near = vec![sphere(1, [0.3, 0.0, 1.0], 0.05)];
+    let d = g.decide(&near, 0).unwrap();
+    let expected = 0.2 * std::f64::consts::FRAC_1_SQRT_2 - 0.05;
+    let bound = d.report.unwrap().min_clearance;
+    assert!((bound - expected).abs() < 1e-9, "{bound} vs {expected}");
+    let mut g = guard(&["top"], GuardPolicy::default());
+    g.accept(0, plain, 0, WALL).unwrap();
+    assert_eq!(g.decide(&corner, 0).unwrap().verdict, GuardVerdict::Clear);
+    assert_eq!(g.decide(&axis, 0).unwrap().verdict, GuardVerdict::Clear);
+    // A field of view that is not convex is refused by name.
+    let bad = FieldOfView {
+        aperture: Aperture::Cone { half_angle: 2.0 },
+        ..fov
+    };
+    let e = view(&floor, TOP, 0)
+        .envelope
+        .with_field_of_view(Some(bad))
+        .unwrap_err();
+    assert!(e.to_string().contains("half angle"), "{e}");
 }
 
 #[test]
