@@ -93,7 +93,8 @@ impl Deadman {
             Some(deadline) => deadline,
             None => (3.0 * period_s).min(horizon),
         };
-        if deadline > 0.0 {
+        // The consumer counts in nanoseconds: less than one is none.
+        if deadline * 1e9 >= 1.0 {
             Ok(deadline)
         } else {
             Err(GuardError::NoTimeToMove { deadline, horizon })
@@ -190,7 +191,7 @@ mod tests {
         let refused = Deadman::deadline_for(0.1, Some(0.5), 0.1).unwrap_err();
         assert!(refused.to_string().contains("horizon"), "{refused}");
         // A horizon of 0 would leave the arm halted for ever: refused by name.
-        for (requested, horizon) in [(None, 0.0), (Some(0.0), 0.1), (Some(0.0), 0.0)] {
+        for (requested, horizon) in [(None, 0.0), (Some(0.0), 0.1), (Some(1e-12), 0.1)] {
             let refused = Deadman::deadline_for(0.02, requested, horizon).unwrap_err();
             assert!(refused.to_string().contains("no time to move"), "{refused}");
         }

@@ -67,8 +67,8 @@ pub enum GuardError {
     DeadlineBeyondHorizon { deadline: f64, horizon: f64 },
     /// A deadline of 0 (a horizon of 0, say): the consumer could never move.
     #[error(
-        "a deadline of {deadline} s leaves no time to move on a clear verdict \
-         (the guard's horizon is {horizon} s: set the arm file's [guard] horizon above 0)"
+        "a deadline of {deadline} s (under 1 ns) leaves no time to move on a clear verdict \
+         (the guard's horizon, the arm file's [guard] horizon, is {horizon} s)"
     )]
     NoTimeToMove { deadline: f64, horizon: f64 },
     #[error("the time must be finite, got {0}")]

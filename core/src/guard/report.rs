@@ -9,7 +9,9 @@ use super::shape::WorldShape;
 use serde::{Deserialize, Serialize};
 
 /// One shape's result. Every distance is in `[0, max_report]`
-/// (`max_report` means "at least that").
+/// (`max_report` means "at least that"; a view of a cloud with a position
+/// error is checked with `max_report` raised by it, so its `occupied` and
+/// `unseen` may reach that raised cap).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ShapeClearance {
     /// The link carrying the shape.

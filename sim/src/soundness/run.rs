@@ -62,34 +62,18 @@ pub fn run(
         .try_reduce(SoundnessReport::empty, |a, b| Ok(a.merged(b)))
 }
 
-/// Directions around a core sample along which the shape, grown by the stop
-/// distance, must stay inside a sensor's field of view for the pose to count
-/// as in seen space: the axes and the diagonals (normalised where used).
-const AROUND: [DVec3; 14] = [
-    DVec3::X,
-    DVec3::NEG_X,
-    DVec3::Y,
-    DVec3::NEG_Y,
-    DVec3::Z,
-    DVec3::NEG_Z,
-    DVec3::new(1.0, 1.0, 1.0),
-    DVec3::new(1.0, 1.0, -1.0),
-    DVec3::new(1.0, -1.0, 1.0),
-    DVec3::new(1.0, -1.0, -1.0),
-    DVec3::new(-1.0, 1.0, 1.0),
-    DVec3::new(-1.0, 1.0, -1.0),
-    DVec3::new(-1.0, -1.0, 1.0),
-    DVec3::new(-1.0, -1.0, -1.0),
-];
-
-/// Whether every shape, grown by the stop distance, lies in space some view
-/// saw free and that nothing unseen can have reached by the end of the
-/// verdict: each core sample in a sensor's line of sight at its scan time,
-/// and the ball around it of the shape's radius, the stop distance and the
-/// way an obstacle at the speed bound travels from the scan until the
-/// horizon (along [`AROUND`]) inside that sensor's field of view and range.
-/// A pose outside it has no provable `clear`, so it does not count towards
-/// conservativeness.
+/// Whether every shape, grown by the stop distance, lies in space one fresh
+/// view saw free and that nothing unseen can have reached by the end of the
+/// verdict: in one view not older than the guard's `max_age` (the harness's
+/// own age: decision time less scan time, plus the clock offset the guard
+/// adds), each core sample has a clear line of sight from the sensor at its
+/// scan time, and lies deeper in the rays' hull and range
+/// ([`Sensor::depth_in_view`](super::sensors::Sensor::depth_in_view),
+/// exact) than the shape's radius, the stop distance and the way an obstacle
+/// at the speed bound travels from the scan until the horizon. The depth is
+/// concave, so the samples (a capsule's ends and middle) bound the whole
+/// core. A pose outside it has no provable `clear`, so it does not count
+/// towards conservativeness.
 fn in_seen_space(
     cores: &[Core],
     views: &[View],
@@ -97,18 +81,19 @@ fn in_seen_space(
     params: &SoundnessParams,
     decision: f64,
 ) -> bool {
+    let offset = DEFAULT_MAX_CLOCK_OFFSET_NS as f64 * 1e-9;
     cores.iter().all(|c| {
-        c.samples().iter().all(|&p| {
-            views.iter().any(|v| {
-                let sensor = &v.setup.sensor;
-                let since = (decision - sensor.time).max(0.0) + params.horizon;
-                let reach = c.radius + params.stop_distance + params.max_obstacle_speed * since;
-                v.envelope.is_some()
-                    && sensor.sees(p, &scene.solids)
-                    && AROUND
-                        .iter()
-                        .all(|d| sensor.covers(p + d.normalize() * reach))
-            })
+        views.iter().any(|v| {
+            let sensor = &v.setup.sensor;
+            let age = (decision - sensor.time).max(0.0) + offset;
+            let reach = c.radius
+                + params.stop_distance
+                + params.max_obstacle_speed * (age + params.horizon);
+            v.envelope.is_some()
+                && age <= params.max_age
+                && c.samples()
+                    .iter()
+                    .all(|&p| sensor.sees(p, &scene.solids) && sensor.depth_in_view(p) >= reach)
         })
     })
 }

@@ -227,14 +227,13 @@ impl Sensor {
             return None;
         }
         let angle = |tangent: f64| tangent.atan().max(1e-9);
-        let last_line = |half: f64| Self::half_count(half.tan(), self.step) as f64 * self.step;
-        let aperture = match self.fov {
-            FieldOfView::Cone { half_angle } => message::Aperture::Cone {
-                half_angle: angle(half_angle.tan() - self.step * std::f64::consts::SQRT_2),
+        let aperture = match self.hull_tangents() {
+            FieldOfView::Cone { half_angle: t } => message::Aperture::Cone {
+                half_angle: angle(t),
             },
             FieldOfView::Frustum { half_x, half_y } => message::Aperture::Rectangle {
                 right: self.right.to_array(),
-                half_angles: [angle(last_line(half_x)), angle(last_line(half_y))],
+                half_angles: [angle(half_x), angle(half_y)],
             },
         };
         Some(message::FieldOfView {
@@ -243,6 +242,65 @@ impl Sensor {
             aperture,
             max_range: self.max_range,
         })
+    }
+
+    /// The tangents of the half angles of the rays' hull on the image plane
+    /// (see [`Self::stated_field_of_view`]): a cone's radius, or a frustum's
+    /// two half widths.
+    fn hull_tangents(&self) -> FieldOfView {
+        let last_line = |half: f64| Self::half_count(half.tan(), self.step) as f64 * self.step;
+        match self.fov {
+            FieldOfView::Cone { half_angle } => FieldOfView::Cone {
+                half_angle: (half_angle.tan() - self.step * std::f64::consts::SQRT_2).max(0.0),
+            },
+            FieldOfView::Frustum { half_x, half_y } => FieldOfView::Frustum {
+                half_x: last_line(half_x),
+                half_y: last_line(half_y),
+            },
+        }
+    }
+
+    /// How deep `p` lies inside the hull of the rays and the range, by the
+    /// harness's own geometry (0 or less outside): the distance to the
+    /// nearest bounding surface, exact for these convex regions. Perspective
+    /// rays: the cone `angle <= atan(t)` is `d sin(alpha - theta)` away, a
+    /// frustum's face (through the origin, at `atan(t)` from the look) is
+    /// `depth sin(beta) - |side| cos(beta)` away, the range ball `max_range -
+    /// |p - origin|`. Parallel rays: a prism along the look from the aperture
+    /// plane to `max_range`, its section the image region scaled by
+    /// `reference`.
+    pub fn depth_in_view(&self, p: DVec3) -> f64 {
+        let to = p - self.origin;
+        let depth = to.dot(self.look);
+        let (x, y) = (to.dot(self.right), to.dot(self.up));
+        let hull = self.hull_tangents();
+        match self.projection {
+            Projection::Perspective => {
+                let lateral = match hull {
+                    FieldOfView::Cone { half_angle: t } => {
+                        let a = t.atan();
+                        a.sin() * depth - a.cos() * x.hypot(y)
+                    }
+                    FieldOfView::Frustum { half_x, half_y } => {
+                        let face = |side: f64, t: f64| {
+                            let b = t.atan();
+                            b.sin() * depth - b.cos() * side.abs()
+                        };
+                        face(x, half_x).min(face(y, half_y))
+                    }
+                };
+                lateral.min(self.max_range - to.length())
+            }
+            Projection::Parallel { reference } => {
+                let lateral = match hull {
+                    FieldOfView::Cone { half_angle: t } => t * reference - x.hypot(y),
+                    FieldOfView::Frustum { half_x, half_y } => {
+                        (half_x * reference - x.abs()).min(half_y * reference - y.abs())
+                    }
+                };
+                lateral.min(depth).min(self.max_range - depth)
+            }
+        }
     }
 
     /// Whether `p` is inside the field of view and within range (whatever
@@ -273,6 +331,65 @@ impl Sensor {
 mod tests {
     use super::*;
     use crate::soundness::solids::Body;
+
+    /// The depth in the rays' hull is inside the nominal view, exact where
+    /// it is positive (a ball of that radius stays covered, probed densely),
+    /// and the stated field of view agrees with it.
+    #[test]
+    fn the_depth_in_view_is_exact_and_inside_the_view() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(4);
+        let views = [
+            FieldOfView::Cone { half_angle: 0.6 },
+            FieldOfView::Frustum {
+                half_x: 0.4,
+                half_y: 0.7,
+            },
+        ];
+        for (k, fov) in views.into_iter().enumerate() {
+            for parallel in [false, true] {
+                let mut sensor = Sensor::new(
+                    DVec3::new(0.2, -0.1, 2.0),
+                    DVec3::new(0.3, 0.1, -1.0),
+                    fov,
+                    3.0,
+                    0.02,
+                    0.0,
+                );
+                if parallel {
+                    sensor.projection = Projection::Parallel { reference: 2.0 };
+                }
+                let stated = sensor.stated_field_of_view();
+                let mut inside = 0;
+                for _ in 0..3000 {
+                    let p = DVec3::new(
+                        rng.random_range(-2.0..2.0),
+                        rng.random_range(-2.0..2.0),
+                        rng.random_range(-1.0..2.5),
+                    );
+                    let depth = sensor.depth_in_view(p);
+                    if let Some(f) = &stated {
+                        let guard = shroud_core::guard::depth_inside(f, p);
+                        assert!((guard - depth).abs() < 1e-9, "{k}: {guard} vs {depth}");
+                    }
+                    if depth <= 0.0 {
+                        continue;
+                    }
+                    inside += 1;
+                    for _ in 0..200 {
+                        let d = DVec3::new(
+                            rng.random_range(-1.0..1.0),
+                            rng.random_range(-1.0..1.0),
+                            rng.random_range(-1.0..1.0),
+                        )
+                        .normalize_or(DVec3::X);
+                        assert!(sensor.covers(p + d * depth * 0.999), "{k} {parallel}");
+                    }
+                }
+                assert!(inside > 50, "{k} {parallel}: {inside}");
+            }
+        }
+    }
 
     #[test]
     fn a_downward_cone_scans_the_floor_within_range() {
