@@ -185,7 +185,12 @@ mod tests {
         }
 
         #[test]
-        fn a_spoiled_value_is_refused(fov in near_valid(), which in 0..5usize, bad in any_f64()) {
+        fn a_spoiled_value_is_refused(
+            fov in near_valid(),
+            which in 0..5usize,
+            side in 0..2usize,
+            bad in any_f64(),
+        ) {
             let mut fov = fov;
             let spoiled = match which {
                 0 => { fov.apex[1] = bad; !bad.is_finite() }
@@ -201,12 +206,21 @@ mod tests {
                         !(bad > 0.0 && bad < std::f64::consts::FRAC_PI_2)
                     }
                     Aperture::Rectangle { half_angles, .. } => {
-                        half_angles[1] = bad;
+                        half_angles[side] = bad;
                         !(bad > 0.0 && bad < std::f64::consts::FRAC_PI_2)
                     }
                 },
                 _ => match &mut fov.aperture {
-                    Aperture::Rectangle { right, .. } => { *right = fov.axis; true }
+                    Aperture::Rectangle { right, .. } => {
+                        // A spoiled component: still unit and perpendicular
+                        // only by a fluke, which the check mirrors.
+                        right[side] = bad;
+                        let norm = right.iter().map(|x| x * x).sum::<f64>().sqrt();
+                        let dot: f64 = (0..3).map(|i| right[i] * fov.axis[i]).sum();
+                        !(right.iter().all(|x| x.is_finite())
+                            && (norm - 1.0).abs() <= UNIT_TOLERANCE
+                            && dot.abs() <= UNIT_TOLERANCE)
+                    }
                     Aperture::Cone { .. } => false,
                 },
             };
