@@ -38,7 +38,7 @@ pub use error::BlendError;
 pub use merge::{keep_transition, merge, Merged, Source};
 pub use pipeline::{blend, blend_sequence, Blend, BlendParams, BlendReport, StageTimes};
 pub use polygon::{PolygonOfInterest, MAX_POLYGON_VERTICES};
-pub use polygon2d::{segment_distance, signed_area, Polygon2};
+pub use polygon2d::{signed_area, Polygon2};
 pub use prepared::{Child, Prepared, MIN_CLOUD_POINTS};
 pub use quality::{overlap_rate, seam_gap, seam_points, Gap};
 pub use regions::{blend_regions, BlendRegions, ParentClass, RegionParams};

@@ -1,6 +1,7 @@
 //! Planar polygons in the coordinates of the plane P_f: inside tests, distance to
 //! the boundary, and the paper's equidistant scaling (Section 4, Fig. 8).
 
+use crate::math::segment_distance;
 use glam::DVec2;
 
 /// A simple polygon, counter-clockwise, with at least three vertices.
@@ -146,18 +147,6 @@ fn outward_normal(a: DVec2, b: DVec2) -> DVec2 {
 pub fn signed_area(v: &[DVec2]) -> f64 {
     let n = v.len();
     0.5 * (0..n).map(|i| v[i].perp_dot(v[(i + 1) % n])).sum::<f64>()
-}
-
-/// Distance from `q` to the segment `a b`.
-pub fn segment_distance(q: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let e = b - a;
-    let len2 = e.length_squared();
-    let t = if len2 > 0.0 {
-        ((q - a).dot(e) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    q.distance(a + e * t)
 }
 
 #[cfg(test)]

@@ -21,18 +21,32 @@ use super::config::GuardConfig;
 use super::field_of_view::clearance_outside;
 use super::shape::Shape;
 use super::Envelope;
+use crate::math::segment_distance;
 use crate::surrogate::trim::{BOTTOM, LEFT, RIGHT, TOP};
+use glam::DVec2;
 
 /// A point of the `(u, v)` plane.
-type P2 = [f64; 2];
+type P2 = DVec2;
 
 /// The four triangles of a cell in local coordinates: the edge, then the
 /// centre (see `surrogate::trim`).
 const TRIANGLES: [(u8, [P2; 3]); 4] = [
-    (BOTTOM, [[0.0, 0.0], [1.0, 0.0], [0.5, 0.5]]),
-    (RIGHT, [[1.0, 0.0], [1.0, 1.0], [0.5, 0.5]]),
-    (TOP, [[1.0, 1.0], [0.0, 1.0], [0.5, 0.5]]),
-    (LEFT, [[0.0, 1.0], [0.0, 0.0], [0.5, 0.5]]),
+    (
+        BOTTOM,
+        [P2::new(0.0, 0.0), P2::new(1.0, 0.0), P2::new(0.5, 0.5)],
+    ),
+    (
+        RIGHT,
+        [P2::new(1.0, 0.0), P2::new(1.0, 1.0), P2::new(0.5, 0.5)],
+    ),
+    (
+        TOP,
+        [P2::new(1.0, 1.0), P2::new(0.0, 1.0), P2::new(0.5, 0.5)],
+    ),
+    (
+        LEFT,
+        [P2::new(0.0, 1.0), P2::new(0.0, 0.0), P2::new(0.5, 0.5)],
+    ),
 ];
 
 impl Envelope {
@@ -43,11 +57,11 @@ impl Envelope {
         let (a, b) = match shape {
             Shape::Sphere(s) => {
                 let c = self.to_frame(s.centre);
-                ([c[0], c[1]], [c[0], c[1]])
+                (P2::new(c[0], c[1]), P2::new(c[0], c[1]))
             }
             Shape::Capsule(c) => {
                 let (a, b) = (self.to_frame(c.a), self.to_frame(c.b));
-                ([a[0], a[1]], [b[0], b[1]])
+                (P2::new(a[0], a[1]), P2::new(b[0], b[1]))
             }
         };
         let cap = config.max_report;
@@ -120,10 +134,10 @@ impl Envelope {
         let kept = self.trim_bits(h, g);
         let d = self.domain();
         let to_uv = |p: P2| {
-            [
+            P2::new(
                 d.u_min + (h as f64 + p[0]) * d.u_step,
                 d.v_min + (g as f64 + p[1]) * d.v_step,
-            ]
+            )
         };
         TRIANGLES
             .iter()
@@ -133,41 +147,16 @@ impl Envelope {
     }
 }
 
-fn sub(a: P2, b: P2) -> P2 {
-    [a[0] - b[0], a[1] - b[1]]
-}
-
-fn cross(a: P2, b: P2) -> f64 {
-    a[0] * b[1] - a[1] * b[0]
-}
-
-fn dot(a: P2, b: P2) -> f64 {
-    a[0] * b[0] + a[1] * b[1]
-}
-
-/// Distance from `p` to segment `a`-`b`.
-fn point_segment_distance(p: P2, a: P2, b: P2) -> f64 {
-    let (ab, ap) = (sub(b, a), sub(p, a));
-    let len2 = dot(ab, ab);
-    let t = if len2 > 0.0 {
-        (dot(ap, ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let q = [a[0] + t * ab[0] - p[0], a[1] + t * ab[1] - p[1]];
-    dot(q, q).sqrt()
-}
-
 /// Whether `p` lies in the closed triangle `t`.
 fn in_triangle(p: P2, t: [P2; 3]) -> bool {
-    let s = [0, 1, 2].map(|i| cross(sub(t[(i + 1) % 3], t[i]), sub(p, t[i])));
+    let s = [0, 1, 2].map(|i| (t[(i + 1) % 3] - t[i]).perp_dot(p - t[i]));
     (s[0] >= 0.0 && s[1] >= 0.0 && s[2] >= 0.0) || (s[0] <= 0.0 && s[1] <= 0.0 && s[2] <= 0.0)
 }
 
 /// Whether the closed segments `a`-`b` and `c`-`d` meet.
 fn segments_meet(a: P2, b: P2, c: P2, d: P2) -> bool {
-    let (d1, d2) = (cross(sub(b, a), sub(c, a)), cross(sub(b, a), sub(d, a)));
-    let (d3, d4) = (cross(sub(d, c), sub(a, c)), cross(sub(d, c), sub(b, c)));
+    let (d1, d2) = ((b - a).perp_dot(c - a), (b - a).perp_dot(d - a));
+    let (d3, d4) = ((d - c).perp_dot(a - c), (d - c).perp_dot(b - c));
     (d1 * d2 <= 0.0) && (d3 * d4 <= 0.0) && {
         // Collinear segments meet only when their extents overlap.
         let overlap =
@@ -187,13 +176,10 @@ fn segment_triangle_distance(a: P2, b: P2, t: [P2; 3]) -> f64 {
     if edges.iter().any(|&(c, d)| segments_meet(a, b, c, d)) {
         return 0.0;
     }
-    let ends = edges.iter().flat_map(|&(c, d)| {
-        [
-            point_segment_distance(a, c, d),
-            point_segment_distance(b, c, d),
-        ]
-    });
-    let corners = t.iter().map(|&c| point_segment_distance(c, a, b));
+    let ends = edges
+        .iter()
+        .flat_map(|&(c, d)| [segment_distance(a, c, d), segment_distance(b, c, d)]);
+    let corners = t.iter().map(|&c| segment_distance(c, a, b));
     ends.chain(corners).fold(f64::INFINITY, f64::min)
 }
 
@@ -206,7 +192,7 @@ mod tests {
     #[test]
     fn segment_triangle_distance_agrees_with_sampling() {
         let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
-        let mut p = || [rng.random_range(-2.0..2.0), rng.random_range(-2.0..2.0)];
+        let mut p = || P2::new(rng.random_range(-2.0..2.0), rng.random_range(-2.0..2.0));
         for _ in 0..300 {
             let (a, b) = (p(), p());
             let t = [p(), p(), p()];
@@ -215,18 +201,18 @@ mod tests {
             let mut sampled = f64::INFINITY;
             for i in 0..=n {
                 let x = i as f64 / n as f64;
-                let q = [a[0] + x * (b[0] - a[0]), a[1] + x * (b[1] - a[1])];
+                let q = a.lerp(b, x);
                 let d = if in_triangle(q, t) {
                     0.0
                 } else {
                     (0..3)
-                        .map(|k| point_segment_distance(q, t[k], t[(k + 1) % 3]))
+                        .map(|k| segment_distance(q, t[k], t[(k + 1) % 3]))
                         .fold(f64::INFINITY, f64::min)
                 };
                 sampled = sampled.min(d);
             }
             // Sampling only overestimates, by at most half a step.
-            let step = ((b[0] - a[0]).hypot(b[1] - a[1])) / n as f64;
+            let step = a.distance(b) / n as f64;
             assert!(exact <= sampled + 1e-12, "{exact} > {sampled}");
             assert!(exact >= sampled - step, "{exact} < {sampled} - {step}");
         }
