@@ -144,12 +144,13 @@ fn fit_node_publishes_certified_surrogates_and_survives_garbage() {
     assert!(!alive(pids[0]));
 }
 
-/// A scan scene's scanner states its field of view in every cloud, and the
-/// fit node hands it on in the surrogate of that cloud, for the guard to
-/// count the space outside it as unseen. Every point of the cloud lies within
+/// A scan scene's scanner states its field of view and its rays without a
+/// return in every cloud, and the fit node hands both on in the surrogate of
+/// that cloud, for the guard to count the space outside the one and inside
+/// the other as unseen. Every point of the cloud lies within
 /// the stated range of the optical centre, in front of it.
 #[test]
-fn the_field_of_view_travels_from_the_scanner_through_the_fit() {
+fn the_field_of_view_and_empty_rays_travel_from_the_scanner_through_the_fit() {
     let (endpoint, session) = hub_on_free_port();
     let ns = "e2e-fov";
     let clouds = session
@@ -211,12 +212,18 @@ fn the_field_of_view_travels_from_the_scanner_through_the_fit() {
                 let d = glam::DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) - apex;
                 assert!(d.length() <= fov.max_range * (1.0 + 1e-6) && d.dot(axis) > 0.0);
             }
-            stated.insert(msg.sequence, fov);
+            // The default scanner over the table top: a quarter of its rays
+            // miss the scene, and the cloud lists them from the same apex.
+            let no_return = msg.no_return.expect("a scan lists its empty rays");
+            assert_eq!(no_return.apex, fov.apex);
+            assert!(!no_return.cones.is_empty());
+            stated.insert(msg.sequence, (fov, no_return));
         }
         surrogates_heard += 1;
         let (msg, _) = SurrogateMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
-        if let Some(fov) = stated.get(&msg.source_sequence) {
+        if let Some((fov, no_return)) = stated.get(&msg.source_sequence) {
             assert_eq!(msg.field_of_view.as_ref(), Some(fov));
+            assert_eq!(msg.no_return.as_ref(), Some(no_return));
             matched += 1;
         }
     }

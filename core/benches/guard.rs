@@ -6,13 +6,16 @@
 //! three (top, front, side sandwiches of the same cloud): judging by the
 //! occupied space alone (`ignore`), counting unseen space (`stop`, the
 //! default), and counting the space outside a stated field of view as well
-//! (`stop_fov`: a cone from 4 m back along each view's direction).
+//! (`stop_fov`: a cone from 4 m back along each view's direction), and with
+//! the most rays without a return a cloud may list on top (`stop_fov_dark`:
+//! 1024 cones of 0.6 degrees on a 32 x 32 grid across that cone, the worst
+//! case of `guard::no_return`'s search).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use shroud_core::guard::{
     check_arm, ArmFile, CollisionGuard, Envelope, GuardPolicy, SurrogateInput, UnobservedPolicy,
 };
-use shroud_core::message::{Aperture, FieldOfView};
+use shroud_core::message::{Aperture, DarkCone, FieldOfView, NoReturn, MAX_DARK_CONES};
 use shroud_core::surrogate::{fit_surrogate, FitOptions, Sides};
 use std::hint::black_box;
 
@@ -91,12 +94,13 @@ fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
     let links: Vec<String> = file.arm.links().iter().map(|l| l.name.clone()).collect();
     let mut group = c.benchmark_group("guard_views");
     let cases = [
-        ("ignore", UnobservedPolicy::Ignore, false),
-        ("stop", UnobservedPolicy::Stop, false),
-        ("stop_fov", UnobservedPolicy::Stop, true),
+        ("ignore", UnobservedPolicy::Ignore, false, false),
+        ("stop", UnobservedPolicy::Stop, false, false),
+        ("stop_fov", UnobservedPolicy::Stop, true, false),
+        ("stop_fov_dark", UnobservedPolicy::Stop, true, true),
     ];
     for count in [1, 3] {
-        for (label, unobserved, fov) in cases {
+        for (label, unobserved, fov, dark) in cases {
             let policy = GuardPolicy {
                 max_skew_ns: u64::MAX,
                 unobserved,
@@ -113,6 +117,12 @@ fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
                         .with_field_of_view(Some(cone_along(directions[view])))
                         .expect("a valid field of view");
                 }
+                if dark {
+                    input.envelope = input
+                        .envelope
+                        .with_no_return(Some(&dark_grid(directions[view])))
+                        .expect("valid cones");
+                }
                 guard.accept(view, input, 0, 0).expect("fresh");
             }
             let decision = guard.decide(&pose.shapes, 0).expect("valid pose");
@@ -127,6 +137,29 @@ fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
         }
     }
     group.finish();
+}
+
+/// [`MAX_DARK_CONES`] thin cones from [`cone_along`]'s apex, on a 32 x 32
+/// grid of directions across its 40 degrees.
+fn dark_grid(direction: [f64; 3]) -> NoReturn {
+    let axis = glam::DVec3::from_array(direction);
+    let (e1, e2) = axis.any_orthonormal_pair();
+    let side = (MAX_DARK_CONES as f64).sqrt() as usize;
+    let span = 40f64.to_radians().tan();
+    let cones = (0..side * side)
+        .map(|k| {
+            let (i, j) = ((k % side) as f64, (k / side) as f64);
+            let at = |x: f64| span * (2.0 * (x + 0.5) / side as f64 - 1.0);
+            DarkCone {
+                axis: (axis + e1 * at(i) + e2 * at(j)).normalize().to_array(),
+                half_angle: 0.6f64.to_radians(),
+            }
+        })
+        .collect();
+    NoReturn {
+        apex: direction.map(|d| -4.0 * d),
+        cones,
+    }
 }
 
 /// A 40-degree cone from 4 m back along `direction`, 8 m deep.

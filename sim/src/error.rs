@@ -55,6 +55,10 @@ pub enum SceneError {
         value: f64,
         interval: &'static str,
     },
+    /// A scan's empty rays need a cone too wide to state (a grid too coarse
+    /// for its field of view).
+    #[error("the scan's rays without return cannot be stated: {reason}")]
+    NoReturn { reason: String },
     /// A scanner resolution (columns, rows or point budget) is zero.
     #[error("scene parameter `{parameter}` must be at least 1 (a scan needs rays), got 0")]
     ZeroResolution { parameter: String },

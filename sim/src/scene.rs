@@ -9,7 +9,7 @@ use crate::table_top::TableTop;
 use crate::terrain::Terrain;
 use serde::{Deserialize, Serialize};
 use shroud_core::format::TriangleMesh;
-use shroud_core::message::FieldOfView;
+use shroud_core::message::{FieldOfView, NoReturn};
 use std::str::FromStr;
 
 /// Any scene. Serialized with a `"kind"` tag holding the scene's name, e.g.
@@ -230,14 +230,24 @@ impl Scene {
     /// (finite) time, so a frame loop can treat all scenes alike. A scan scene
     /// returns its [`Scene::scan_frame`]'s points.
     pub fn generate(&self, time: f64) -> Result<Vec<[f32; 3]>, SceneError> {
+        self.generate_with_no_return(time).map(|(points, _)| points)
+    }
+
+    /// [`Self::generate`], and for a scan scene the directions in which its
+    /// rays returned nothing ([`ScanFrame::no_return`]).
+    pub fn generate_with_no_return(
+        &self,
+        time: f64,
+    ) -> Result<(Vec<[f32; 3]>, Option<NoReturn>), SceneError> {
         check_finite("time", time)?;
+        let scanned = |frame: ScanFrame| (frame.points, frame.no_return);
         match self {
-            Self::MovingSpheres(s) => s.generate(time),
-            Self::Terrain(t) => t.generate(),
-            Self::TableTop(t) => t.generate(),
-            Self::ScanTableTop(s) => s.scan(time).map(|f| f.points),
-            Self::ScanTerrain(s) => s.scan(time).map(|f| f.points),
-            Self::ScanMesh(s) => s.scan(time).map(|f| f.points),
+            Self::MovingSpheres(s) => s.generate(time).map(|p| (p, None)),
+            Self::Terrain(t) => t.generate().map(|p| (p, None)),
+            Self::TableTop(t) => t.generate().map(|p| (p, None)),
+            Self::ScanTableTop(s) => s.scan(time).map(scanned),
+            Self::ScanTerrain(s) => s.scan(time).map(scanned),
+            Self::ScanMesh(s) => s.scan(time).map(scanned),
         }
     }
 }

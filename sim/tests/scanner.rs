@@ -656,3 +656,46 @@ fn scan_timing() {
         );
     }
 }
+
+/// Rays that miss the mesh are stated as cones from the optical centre (the
+/// field of view's apex): beyond the edge of a square 10 m below, not over
+/// its middle. Lone dropouts over a plane that fills the view state nothing.
+#[test]
+fn rays_without_return_are_stated_as_cones() {
+    let bvh = Bvh::build(&square(3.0, 0.0)).unwrap();
+    let scanner = exact_scanner([0.0, 0.0, 10.0], [0.0; 3], [60.0, 40.0], [121, 81]);
+    let frame = scanner.scan(&bvh, 0.0).unwrap();
+    let stated = frame
+        .no_return
+        .expect("rays beyond the square return nothing");
+    let fov = scanner.field_of_view(0.0).unwrap();
+    assert_eq!(stated.apex, fov.apex);
+    assert!(stated.cones.len() <= shroud_core::message::MAX_DARK_CONES);
+    let covered = |p: [f64; 3]| {
+        let d: [f64; 3] = std::array::from_fn(|k| p[k] - stated.apex[k]);
+        let norm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+        stated.cones.iter().any(|c| {
+            let cos: f64 = (0..3).map(|k| c.axis[k] * d[k] / norm).sum();
+            cos.clamp(-1.0, 1.0).acos() <= c.half_angle
+        })
+    };
+    for beyond in [
+        [3.2, 0.0, 0.0],
+        [4.5, 0.0, 0.0],
+        [0.0, -3.3, 0.0],
+        [-4.0, 3.0, 0.0],
+    ] {
+        assert!(covered(beyond), "{beyond:?}");
+    }
+    for over in [[0.0, 0.0, 0.0], [1.5, 0.0, 0.0], [-1.0, 1.0, 0.5]] {
+        assert!(!covered(over), "{over:?}");
+    }
+    let plane = Bvh::build(&square(100.0, 0.0)).unwrap();
+    let noisy = RangeScanner {
+        dropout: 0.01,
+        ..scanner
+    };
+    let frame = noisy.scan(&plane, 0.0).unwrap();
+    assert!(frame.points.len() < noisy.rays(), "some rays dropped out");
+    assert_eq!(frame.no_return, None);
+}

@@ -4,6 +4,7 @@
 
 mod boundary;
 mod neighbours;
+mod no_return;
 mod normals;
 mod plane;
 mod point_cloud;
@@ -14,6 +15,7 @@ pub use boundary::{
     boundary_loops, boundary_points, find_rim, BoundaryFailure, BoundaryLoop, BoundaryParams,
 };
 pub use neighbours::{to_dvec3, to_f32, NeighbourIndex};
+pub use no_return::{dark_cones, EmptyRays};
 pub use normals::{
     default_orientation, estimate_normals, orient_normals, oriented_normals, Orientation,
 };

@@ -29,8 +29,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::error::GuardError;
+use super::no_return::DarkCones;
 use crate::math::Frame;
-use crate::message::FieldOfView;
+use crate::message::{FieldOfView, NoReturn};
 use crate::query::{kept_closed, patch_on_rect, SideView, SurrogateView};
 use crate::spline::{bezier_patch, BezierPatch, UniformCubicSurface};
 use crate::surrogate::trim::{ALL, BOTTOM, LEFT, RIGHT, TOP};
@@ -122,6 +123,9 @@ pub struct Envelope {
     /// The region the source cloud's sensor covered, when the cloud said:
     /// space outside it is unseen (`guard::field_of_view`).
     field_of_view: Option<FieldOfView>,
+    /// The directions in which the source cloud's sensor got no return,
+    /// when the cloud said: unseen too (`guard::no_return`).
+    dark: Option<DarkCones>,
 }
 
 impl CellBox {
@@ -183,6 +187,7 @@ impl Envelope {
             inv_step: [1.0 / domain.u_step, 1.0 / domain.v_step],
             kept_cells: 0,
             field_of_view: None,
+            dark: None,
         };
         for g in 0..cells_t {
             let mut row_v = [f64::INFINITY, f64::NEG_INFINITY];
@@ -272,6 +277,22 @@ impl Envelope {
         }
         self.field_of_view = fov;
         Ok(self)
+    }
+
+    /// The same envelope, knowing the directions in which its cloud's sensor
+    /// got no return (or not): they count as unseen. Refused unless valid.
+    pub fn with_no_return(mut self, no_return: Option<&NoReturn>) -> Result<Self, GuardError> {
+        if let Some(n) = no_return {
+            n.validate()
+                .map_err(|e| GuardError::NoReturn(e.to_string()))?;
+        }
+        self.dark = no_return.map(DarkCones::new);
+        Ok(self)
+    }
+
+    /// The directions without return, ready for queries, if the cloud said.
+    pub(crate) fn dark(&self) -> Option<&DarkCones> {
+        self.dark.as_ref()
     }
 
     /// The region the source cloud's sensor covered, if the cloud said.

@@ -10,6 +10,8 @@ pub enum GuardError {
     Toml(String),
     #[error("{0}")]
     FieldOfView(String),
+    #[error("{0}")]
+    NoReturn(String),
     #[error("URDF: {0}")]
     Urdf(String),
     #[error("{what} must be finite, got {value}")]

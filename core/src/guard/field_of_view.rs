@@ -56,7 +56,7 @@ pub(crate) fn clearance_outside(fov: &FieldOfView, shape: &Shape, cap: f64) -> f
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::guard::{Capsule, Sphere};
     use rand::{Rng, SeedableRng};
@@ -92,7 +92,7 @@ mod tests {
         }
     }
 
-    fn random_unit(rng: &mut Pcg64) -> DVec3 {
+    pub(crate) fn random_unit(rng: &mut Pcg64) -> DVec3 {
         loop {
             let v = DVec3::new(
                 rng.random_range(-1.0..1.0),

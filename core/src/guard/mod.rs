@@ -26,8 +26,11 @@
 //!
 //! A surrogate vouches only for what its sensor saw: space outside its domain
 //! and over trimmed-away triangles (which hold no points) counts as possibly
-//! occupied at every height ([`ShapeClearance::unseen`]); a shape whose bound
-//! is set by such space in every view is [`ShapeClearance::unobserved`].
+//! occupied at every height ([`ShapeClearance::unseen`]), and so does space
+//! outside the cloud's stated field of view and along its stated rays without
+//! a return ([`Envelope::with_field_of_view`], [`Envelope::with_no_return`]);
+//! a shape whose bound is set by such space in every view is
+//! [`ShapeClearance::unobserved`].
 // `!(x > 0.0)` deliberately rejects NaN as well, which `x <= 0.0` would let through.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
@@ -41,6 +44,7 @@ mod error;
 mod field_of_view;
 mod joint;
 mod kinematics;
+mod no_return;
 mod probe;
 mod report;
 mod resume;

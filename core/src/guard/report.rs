@@ -23,7 +23,8 @@ pub struct ShapeClearance {
     /// Lower bound on the distance to the occupied region the view saw.
     pub occupied: f64,
     /// Lower bound on the distance to space the view did not see: outside
-    /// its domain and over trimmed triangles, at every height.
+    /// its domain and over trimmed triangles at every height, outside its
+    /// stated field of view, along its stated rays without a return.
     pub unseen: f64,
     /// The bound is set by unseen space (for combined views: in every view
     /// that vouches for the shape): an obstacle there was not seen, only

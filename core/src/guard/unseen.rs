@@ -10,7 +10,9 @@
 //! a segment for a capsule) to the prism's cross-section, minus the radius.
 //! When the cloud stated its sensor's field of view, the space outside it is
 //! unseen too (`guard::field_of_view`): a kept triangle at the edge of the
-//! view is partly interpolated over space the sensor never looked at.
+//! view is partly interpolated over space the sensor never looked at. So are
+//! the directions in which it got no return, when the cloud listed them
+//! (`guard::no_return`): a black object between returns from the floor.
 //!
 //! Why this makes views of *different* clouds combine soundly: each view's
 //! bound `min(occupied, unseen)` is a lower bound on the distance to anything
@@ -51,8 +53,9 @@ const TRIANGLES: [(u8, [P2; 3]); 4] = [
 
 impl Envelope {
     /// Lower bound on the distance from `shape` to the space this view did
-    /// not see (outside the domain, over a trimmed triangle, or outside its
-    /// sensor's field of view when the cloud stated it), in `[0, max_report]`.
+    /// not see (outside the domain, over a trimmed triangle, outside its
+    /// sensor's field of view or along a ray that returned nothing when the
+    /// cloud stated them), in `[0, max_report]`.
     pub(crate) fn unseen_clearance(&self, shape: &Shape, config: &GuardConfig) -> f64 {
         let (a, b) = match shape {
             Shape::Sphere(s) => {
@@ -69,6 +72,9 @@ impl Envelope {
         let mut best = self.distance_outside_domain(a, b) - offset;
         if let Some(fov) = self.field_of_view() {
             best = best.min(clearance_outside(fov, shape, cap));
+        }
+        if let Some(dark) = self.dark() {
+            best = best.min(dark.clearance(shape, cap.min(best.max(0.0))));
         }
         let reach = cap + offset;
         let (lo_u, hi_u) = (a[0].min(b[0]) - reach, a[0].max(b[0]) + reach);

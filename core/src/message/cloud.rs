@@ -6,8 +6,8 @@ use super::channels::{
     blobs_to_channels, channels_to_blobs, check_channels, ChannelBlobs, PointChannel,
 };
 use super::error::MessageError;
-use super::FieldOfView;
 use super::SCHEMA_VERSION;
+use super::{FieldOfView, NoReturn};
 use serde::{Deserialize, Serialize};
 
 /// Sensor pose in the world: position and unit quaternion `[x, y, z, w]`.
@@ -55,6 +55,12 @@ pub struct CloudMessage {
     /// a consumer that finds it counts everything outside as unseen.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub field_of_view: Option<FieldOfView>,
+    /// The directions in which the sensor's rays returned nothing, when the
+    /// producer says (absent otherwise, and in messages from before the
+    /// field existed): a consumer that finds it counts them as unseen, since
+    /// a black object returns nothing, like empty space.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub no_return: Option<NoReturn>,
     /// `points * 4` bytes of little-endian f32 intensity, or absent.
     #[serde(with = "serde_bytes", default, skip_serializing_if = "Option::is_none")]
     pub intensity: Option<Vec<u8>>,
@@ -85,6 +91,7 @@ impl CloudMessage {
             source: source.to_owned(),
             pose,
             field_of_view: None,
+            no_return: None,
             points: f32s_to_bytes(points.iter().flatten().copied()),
             intensity: None,
             channels: None,
@@ -297,6 +304,29 @@ mod tests {
         assert!(e.to_string().contains("max_range"), "{e}");
         let view = super::super::CloudView::new(1, 2, "s", SensorPose::default(), &[]);
         assert!(view.with_field_of_view(msg.field_of_view.unwrap()).is_err());
+    }
+
+    #[test]
+    fn directions_without_return_round_trip_and_are_validated() {
+        let no_return = super::super::sample_no_return();
+        let mut msg = sample();
+        msg.no_return = Some(no_return.clone());
+        let bytes = msg.to_bytes().unwrap();
+        assert_eq!(CloudMessage::from_bytes(&bytes).unwrap(), msg);
+        let tail = &bytes[bytes.len() - msg.points.len() - 12..];
+        assert!(tail.windows(6).any(|w| w == b"points"));
+        assert!(!sample()
+            .to_bytes()
+            .unwrap()
+            .windows(9)
+            .any(|w| w == b"no_return"));
+        let mut bad = no_return;
+        bad.cones[0].axis = [0.0, 0.0, 2.0];
+        msg.no_return = Some(bad.clone());
+        let e = CloudMessage::from_bytes(&msg.to_bytes().unwrap()).unwrap_err();
+        assert!(e.to_string().contains("cone 0: axis"), "{e}");
+        let view = super::super::CloudView::new(1, 2, "s", SensorPose::default(), &[]);
+        assert!(view.with_no_return(bad).is_err());
     }
 
     #[test]

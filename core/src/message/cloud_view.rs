@@ -4,7 +4,7 @@
 
 use super::channels::{channels_to_blobs, check_channels, ChannelBlobs, PointChannel};
 use super::error::MessageError;
-use super::{check_version, CloudMessage, FieldOfView, SensorPose, SCHEMA_VERSION};
+use super::{check_version, CloudMessage, FieldOfView, NoReturn, SensorPose, SCHEMA_VERSION};
 use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
 
@@ -32,6 +32,9 @@ pub struct CloudView<'a> {
     /// See [`CloudMessage::field_of_view`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub field_of_view: Option<FieldOfView>,
+    /// See [`CloudMessage::no_return`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub no_return: Option<NoReturn>,
     #[serde(
         borrow,
         with = "serde_bytes",
@@ -74,6 +77,7 @@ impl<'a> CloudView<'a> {
             source: Cow::Borrowed(source),
             pose,
             field_of_view: None,
+            no_return: None,
             align: None,
             points: le_bytes(bytemuck::cast_slice(points)),
             intensity: None,
@@ -114,6 +118,14 @@ impl<'a> CloudView<'a> {
     pub fn with_field_of_view(mut self, fov: FieldOfView) -> Result<Self, MessageError> {
         fov.validate()?;
         self.field_of_view = Some(fov);
+        Ok(self)
+    }
+
+    /// The same message with the directions in which its sensor's rays
+    /// returned nothing ([`CloudMessage::no_return`]); refused unless valid.
+    pub fn with_no_return(mut self, no_return: NoReturn) -> Result<Self, MessageError> {
+        no_return.validate()?;
+        self.no_return = Some(no_return);
         Ok(self)
     }
 
@@ -179,6 +191,9 @@ impl<'a> CloudView<'a> {
         check_position_error(view.position_error_m)?;
         if let Some(fov) = &view.field_of_view {
             fov.validate()?;
+        }
+        if let Some(no_return) = &view.no_return {
+            no_return.validate()?;
         }
         let pose = view.pose.position.iter().chain(&view.pose.orientation);
         if let Some(index) = pose.clone().position(|v| !v.is_finite()) {
@@ -267,6 +282,7 @@ impl<'a> CloudView<'a> {
             source: self.source.clone().into_owned(),
             pose: self.pose,
             field_of_view: self.field_of_view,
+            no_return: self.no_return.clone(),
             points: self.points.to_vec(),
             intensity: self.intensity.as_ref().map(|i| i.to_vec()),
             channels: self.channels.clone(),

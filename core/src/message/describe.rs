@@ -2,7 +2,7 @@
 //! echo`: every field except bulk blobs, which are summarised (count, bounds).
 
 use super::{
-    BlendCommandMessage, CloudMessage, CollisionMessage, JointStateMessage, MessageError,
+    BlendCommandMessage, CloudMessage, CollisionMessage, JointStateMessage, MessageError, NoReturn,
     NodeStatusMessage, SmoothPatchesMessage, SurrogateMessage, TopicKind,
 };
 use serde_json::{json, Value};
@@ -49,6 +49,7 @@ fn describe_cloud(msg: &CloudMessage) -> Result<Value, MessageError> {
         "pose": msg.pose,
         "position_error_m": msg.position_error_m,
         "field_of_view": msg.field_of_view,
+        "no_return": summarise_no_return(msg.no_return.as_ref()),
         "points": points.len(),
         "bounds": bounds,
         "intensity": msg.intensity.is_some(),
@@ -92,6 +93,15 @@ fn describe_surrogate(msg: &SurrogateMessage) -> Value {
         "fit_ms": msg.fit_ns as f64 / 1e6,
         "position_error_m": msg.position_error_m,
         "field_of_view": msg.field_of_view,
+        "no_return": summarise_no_return(msg.no_return.as_ref()),
+    })
+}
+
+/// The apex, the number of cones and the widest one (degrees), not every cone.
+fn summarise_no_return(no_return: Option<&NoReturn>) -> Value {
+    no_return.map_or(Value::Null, |n| {
+        let widest = n.cones.iter().map(|c| c.half_angle).fold(0.0, f64::max);
+        json!({ "apex": n.apex, "cones": n.cones.len(), "widest_half_angle_deg": widest.to_degrees() })
     })
 }
 
@@ -117,6 +127,10 @@ mod tests {
         msg.field_of_view = Some(crate::message::sample_field_of_view());
         let v = describe(TopicKind::Cloud, &msg.to_bytes().unwrap()).unwrap();
         assert_eq!(v["field_of_view"]["max_range"], 4.0, "{v}");
+        assert!(v["no_return"].is_null(), "{v}");
+        msg.no_return = Some(crate::message::sample_no_return());
+        let v = describe(TopicKind::Cloud, &msg.to_bytes().unwrap()).unwrap();
+        assert_eq!(v["no_return"]["cones"], 2, "{v}");
         assert!(describe(TopicKind::Surrogate, &msg.to_bytes().unwrap()).is_err());
         assert!(describe(TopicKind::Status, b"\x00garbage").is_err());
     }

@@ -14,6 +14,7 @@ mod describe;
 mod error;
 mod field_of_view;
 mod joints;
+mod no_return;
 mod skew;
 mod smooth;
 mod status;
@@ -38,6 +39,9 @@ pub use error::MessageError;
 pub(crate) use field_of_view::sample_field_of_view;
 pub use field_of_view::{Aperture, FieldOfView};
 pub use joints::JointStateMessage;
+#[cfg(test)]
+pub(crate) use no_return::sample_no_return;
+pub use no_return::{DarkCone, NoReturn, MAX_DARK_CONES};
 pub use skew::{
     check_stamp_skew, counted_transit, max_skew_ns_from_secs, ClockAhead, StampSkew,
     DEFAULT_MAX_CLOCK_OFFSET_NS, DEFAULT_MAX_SKEW_NS,

@@ -3,7 +3,7 @@
 
 use super::blob::{bytes_to_f64s, decode, encode, f64s_to_bytes};
 use super::error::MessageError;
-use super::{check_version, FieldOfView, SCHEMA_VERSION};
+use super::{check_version, FieldOfView, NoReturn, SCHEMA_VERSION};
 use crate::format::validate_surrogate;
 use crate::math::Frame;
 use crate::spline::UniformCubicSurface;
@@ -61,6 +61,12 @@ pub struct SurrogateMessage {
     /// as unseen, since the surface over it was not measured.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub field_of_view: Option<FieldOfView>,
+    /// The directions in which the source cloud's sensor got no return,
+    /// copied from the cloud (absent when the cloud had none): a consumer
+    /// counts them as unseen, since the surface across them was interpolated
+    /// over whatever returned nothing.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub no_return: Option<NoReturn>,
 }
 
 fn is_zero(x: &f64) -> bool {
@@ -102,6 +108,7 @@ impl SurrogateMessage {
             fit_ns,
             position_error_m: 0.0,
             field_of_view: None,
+            no_return: None,
         }
     }
 
@@ -122,6 +129,9 @@ impl SurrogateMessage {
         }
         if let Some(fov) = &msg.field_of_view {
             fov.validate()?;
+        }
+        if let Some(no_return) = &msg.no_return {
+            no_return.validate()?;
         }
         let surrogate = msg.to_surrogate()?;
         Ok((msg, surrogate))
@@ -265,6 +275,13 @@ mod tests {
         });
         let e = SurrogateMessage::from_bytes(&msg.to_bytes().unwrap()).unwrap_err();
         assert!(e.to_string().contains("axis"), "{e}");
+        let mut msg = good.clone();
+        msg.no_return = Some(super::super::sample_no_return());
+        let (back, _) = SurrogateMessage::from_bytes(&msg.to_bytes().unwrap()).unwrap();
+        assert_eq!(back.no_return, msg.no_return);
+        msg.no_return.as_mut().unwrap().cones[1].half_angle = 2.0;
+        let e = SurrogateMessage::from_bytes(&msg.to_bytes().unwrap()).unwrap_err();
+        assert!(e.to_string().contains("no_return"), "{e}");
         let bytes = good.to_bytes().unwrap();
         for len in (0..bytes.len()).step_by(7) {
             assert!(SurrogateMessage::from_bytes(&bytes[..len]).is_err());

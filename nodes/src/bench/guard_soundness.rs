@@ -17,6 +17,7 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         black_share: args.black_share,
         parallel_rays: args.parallel_rays,
         state_field_of_view: !args.no_field_of_view,
+        state_no_return: !args.no_empty_rays,
         ..SoundnessParams::default()
     };
     let start = Instant::now();
@@ -92,6 +93,19 @@ fn table(r: &SoundnessReport, p: &SoundnessParams, args: &BenchArgs, wall: f64) 
         ("**contacts**".into(), format!("**{}**", r.contacts)),
         ("conservativeness".into(), conservativeness),
         (
+            "conservativeness beyond the motion allowance".into(),
+            r.conservativeness_beyond_allowance()
+                .map_or("n/a".into(), |c| {
+                    format!(
+                        "{:.1} % (leaving out {} eligible verdicts, {} of them stopped, whose true distance \
+                         is within the stop distance plus the freshest view's motion allowance)",
+                        100.0 * c,
+                        r.eligible_forced,
+                        r.eligible_forced_stopped
+                    )
+                }),
+        ),
+        (
             "closest clear (true distance)".into(),
             format!("{:.4} m", r.closest_clear),
         ),
@@ -104,7 +118,7 @@ fn table(r: &SoundnessReport, p: &SoundnessParams, args: &BenchArgs, wall: f64) 
             format!(
                 "--cases {} --seed {} --verdicts-per-case {}; stop distance {} m, obstacle speed <= {} m/s, \
                  horizon {} s, max age {} s, {} decision times per pose, <= {} rays per sensor, \
-                 sandwich share {}, black share {}, {} rays, field of view {}",
+                 sandwich share {}, black share {}, {} rays, field of view {}, empty rays {}",
                 args.cases,
                 args.seed,
                 p.verdicts_per_case,
@@ -118,6 +132,11 @@ fn table(r: &SoundnessReport, p: &SoundnessParams, args: &BenchArgs, wall: f64) 
                 p.black_share,
                 if p.parallel_rays { "parallel" } else { "perspective" },
                 match (p.parallel_rays, p.state_field_of_view) {
+                    (true, _) => "not stated (parallel rays)",
+                    (false, true) => "stated",
+                    (false, false) => "not stated",
+                },
+                match (p.parallel_rays, p.state_no_return) {
                     (true, _) => "not stated (parallel rays)",
                     (false, true) => "stated",
                     (false, false) => "not stated",

@@ -110,6 +110,11 @@ pub struct BenchArgs {
     /// (the guard then trusts kept triangles at the edge of a view).
     #[arg(long)]
     pub no_field_of_view: bool,
+    /// Guard soundness: clouds do not list the directions in which their
+    /// rays returned nothing (the guard then trusts kept triangles
+    /// interpolated across a black solid).
+    #[arg(long)]
+    pub no_empty_rays: bool,
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {

@@ -181,6 +181,7 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
         // So is where the sensor looked: outside it the surface was not
         // measured, whatever the interpolation says.
         out.field_of_view = msg.field_of_view;
+        out.no_return = msg.no_return.clone();
         out.pipeline_ns = msg
             .pipeline_ns
             .saturating_add(transit_ns)

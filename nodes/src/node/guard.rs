@@ -187,7 +187,9 @@ fn subscribe_view(
             let built = SurrogateMessage::from_bytes(&sample.payload().to_bytes())
                 .map_err(anyhow::Error::from)
                 .and_then(|(msg, s)| {
-                    let envelope = Envelope::new(&s)?.with_field_of_view(msg.field_of_view)?;
+                    let envelope = Envelope::new(&s)?
+                        .with_field_of_view(msg.field_of_view)?
+                        .with_no_return(msg.no_return.as_ref())?;
                     Ok((msg, envelope))
                 });
             let (msg, envelope) = match built {

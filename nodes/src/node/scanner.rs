@@ -133,13 +133,18 @@ fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene) -> Result<()> {
         // read here, so its age counts from now (generation included).
         let sampled = Instant::now();
         let time = start.elapsed().as_secs_f64() * args.time_scale;
-        let points = scene.generate(time)?;
+        let (points, no_return) = scene.generate_with_no_return(time)?;
         let mut msg = CloudView::new(unix_ns(), sequence, &source, SensorPose::default(), &points)
             .with_pipeline_ns(sampled.elapsed().as_nanos() as u64);
         // A scan scene's scanner states where it looked; a sampled scene
         // (the moving spheres) has no sensor and states nothing.
         if let Some(fov) = scene.field_of_view(time)? {
             msg = msg.with_field_of_view(fov)?;
+        }
+        // So does it where its rays came back empty: a black object there
+        // would look like empty space.
+        if let Some(no_return) = no_return {
+            msg = msg.with_no_return(no_return)?;
         }
         let msg = msg.aligned()?;
         let payload = writer.encode(&msg)?;

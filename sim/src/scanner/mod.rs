@@ -18,8 +18,9 @@ use crate::sampling::{stream_rng, time_key};
 use rand::Rng;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+use shroud_core::cloud::{dark_cones, EmptyRays};
 use shroud_core::format::TriangleMesh;
-use shroud_core::message::{Aperture, FieldOfView};
+use shroud_core::message::{Aperture, FieldOfView, NoReturn};
 use std::f64::consts::{PI, TAU};
 
 /// Stream tag separating the scanner's random numbers from the scenes'.
@@ -95,6 +96,11 @@ pub struct ScanFrame {
     pub sensor: SensorPose,
     /// Number of rays cast ([`RangeScanner::rays`]).
     pub rays: usize,
+    /// The directions in which rays returned nothing (missed the mesh, fell
+    /// beyond the range or dropped out), as a driver states them in the
+    /// cloud ([`shroud_core::cloud::dark_cones`]); `None` when every group of
+    /// empty rays is below the scan's resolution.
+    pub no_return: Option<NoReturn>,
 }
 
 impl RangeScanner {
@@ -265,8 +271,7 @@ impl RangeScanner {
         // Row r casts rays_before(r + 1) - rays_before(r) rays: every row the
         // same for a grid, within one of each other for a point budget.
         let rays_before = |row: usize| (row as u128 * rays as u128 / rows as u128) as usize;
-        let angles =
-            |fov: f64, n: usize, i: usize| (fov * ((i as f64 + 0.5) / n as f64 - 0.5)).sin_cos();
+        let angles = angle_at;
         let azimuth_table = |columns: usize| -> Vec<(f64, f64)> {
             (0..columns)
                 .map(|c| angles(self.horizontal_fov, columns, c))
@@ -278,7 +283,7 @@ impl RangeScanner {
         let origin64 = origin.map(f64::from);
         let max_range = self.max_range as f32;
         let time_bits = time_key(time);
-        let row_scans: Vec<(Vec<[f32; 3]>, Vec<f32>)> = (0..rows)
+        let row_scans: Vec<RowScan> = (0..rows)
             .into_par_iter()
             .map(|row| {
                 // Top row first: elevation decreasing.
@@ -288,18 +293,18 @@ impl RangeScanner {
                 let mut rng = stream_rng(self.seed, &[STREAM_TAG, time_bits, row as u64]);
                 let mut points = Vec::with_capacity(columns);
                 let mut intensity = Vec::with_capacity(columns);
+                let mut empty = Vec::with_capacity(columns);
                 for &azimuth in azimuths {
                     let direction = sensor.direction(azimuth, elevation).map(|c| c as f32);
                     // Always draw the same three numbers per ray, so that neither
                     // the settings nor the hits shift the stream of later rays.
                     let keep = rng.random::<f64>() >= self.dropout;
                     let uniforms = (rng.random::<f64>(), rng.random::<f64>());
-                    let Some(hit) = bvh.intersect(origin, direction, max_range) else {
+                    let hit = bvh.intersect(origin, direction, max_range).filter(|_| keep);
+                    empty.push(hit.is_none());
+                    let Some(hit) = hit else {
                         continue;
                     };
-                    if !keep {
-                        continue;
-                    }
                     let noise = if self.range_noise > 0.0 {
                         self.range_noise * box_muller(uniforms)
                     } else {
@@ -312,22 +317,71 @@ impl RangeScanner {
                     let cosine: f32 = (0..3).map(|k| direction[k] * hit.normal[k]).sum();
                     intensity.push(cosine.abs().min(1.0));
                 }
-                (points, intensity)
+                (points, intensity, empty)
             })
             .collect();
-        let hits = row_scans.iter().map(|(p, _)| p.len()).sum();
+        let hits = row_scans.iter().map(|(p, _, _)| p.len()).sum();
+        let no_return = self.no_return(&sensor, &row_scans, &tables, rows)?;
         let mut frame = ScanFrame {
             points: Vec::with_capacity(hits),
             intensity: Vec::with_capacity(hits),
             sensor,
             rays,
+            no_return,
         };
-        for (points, intensity) in row_scans {
+        for (points, intensity, _) in row_scans {
             frame.points.extend(points);
             frame.intensity.extend(intensity);
         }
         Ok(frame)
     }
+
+    /// The empty rays of a scan as cones from the optical centre. Rows of a
+    /// point budget differ by one ray at most; the grid is as wide as the
+    /// widest row (the narrower rows' last cell is no ray). A ray's
+    /// neighbours are at most one azimuth step of the narrower rows (plus
+    /// the shift between rows of different widths, at most another) and one
+    /// elevation step away, and on the sphere an angle is at most the sum of
+    /// the azimuth and elevation differences.
+    fn no_return(
+        &self,
+        sensor: &SensorPose,
+        row_scans: &[RowScan],
+        tables: &[Vec<(f64, f64)>; 2],
+        rows: usize,
+    ) -> Result<Option<NoReturn>, SceneError> {
+        let columns = tables[1].len();
+        let mut empty = vec![false; rows * columns];
+        for (row, (_, _, flags)) in row_scans.iter().enumerate() {
+            empty[row * columns..][..flags.len()].copy_from_slice(flags);
+        }
+        let direction = |k: usize| {
+            let (row, column) = (k / columns, k % columns);
+            let width = row_scans[row].2.len();
+            let azimuth = tables[usize::from(width != tables[0].len())][column];
+            let elevation = angle_at(self.vertical_fov, rows, rows - 1 - row);
+            glam::DVec3::from_array(sensor.direction(azimuth, elevation))
+        };
+        let narrow = tables[0].len().max(1);
+        let spread = 2.0 * self.horizontal_fov / narrow as f64 + self.vertical_fov / rows as f64;
+        let apex = sensor.position.map(|c| f64::from(c as f32));
+        let rays = EmptyRays {
+            rows,
+            columns,
+            empty: &empty,
+        };
+        dark_cones(apex, &rays, direction, spread).map_err(|e| SceneError::NoReturn {
+            reason: e.to_string(),
+        })
+    }
+}
+
+/// Points, intensities and which rays were empty, of one row of a scan.
+type RowScan = (Vec<[f32; 3]>, Vec<f32>, Vec<bool>);
+
+/// Sine and cosine of ray `i`'s angle of `n` spread evenly over `fov`.
+fn angle_at(fov: f64, n: usize, i: usize) -> (f64, f64) {
+    (fov * ((i as f64 + 0.5) / n as f64 - 0.5)).sin_cos()
 }
 
 /// The half angle a stated field of view takes across a single row or

@@ -24,7 +24,7 @@ pub use arms::{ArmKind, Arms, URDF_ARM};
 pub use report::{Finding, FindingClass, SoundnessReport, VerdictCounts};
 pub use run::{minimise, run, run_case, scene_seed};
 pub use scene::{SensorSetup, SoundnessScene};
-pub use sensors::{FieldOfView, Projection, Sensor};
+pub use sensors::{FieldOfView, Projection, Scan, Sensor};
 pub use solids::{Body, Solid};
 
 use shroud_core::guard::{GuardError, UnobservedPolicy};
@@ -79,6 +79,11 @@ pub struct SoundnessParams {
     /// and kept triangles at the edge of a view vouch for space the sensor
     /// never looked at.
     pub state_field_of_view: bool,
+    /// Clouds list the directions in which their perspective sensor's rays
+    /// returned nothing (`shroud_core::cloud::dark_cones`), as a driver
+    /// that knows its ray grid can; the guard then counts them as unseen, so
+    /// that a black solid between returns from the floor is not vouched for.
+    pub state_no_return: bool,
     /// The guard's policy for unseen space. `Stop` is the guarantee under
     /// test; `Ignore` (unsound with views of different clouds) is the
     /// negative control that shows the harness catches optimism.
@@ -100,6 +105,7 @@ impl Default for SoundnessParams {
             black_share: 0.15,
             parallel_rays: false,
             state_field_of_view: true,
+            state_no_return: true,
             unobserved: UnobservedPolicy::Stop,
         }
     }

@@ -160,6 +160,13 @@ pub struct SoundnessReport {
     pub eligible_stopped: u64,
     /// Of those, the verdicts that were `unobserved`.
     pub eligible_unobserved: u64,
+    /// Eligible verdicts whose true distance is within the stop distance
+    /// plus the motion allowance of the freshest view (speed bound times its
+    /// age and the horizon): no guard fed these views may clear them, since
+    /// an obstacle it has not seen yet may be that close. And of them, those
+    /// not clear.
+    pub eligible_forced: u64,
+    pub eligible_forced_stopped: u64,
     /// Largest sampling margin of any scene's views.
     pub max_sampling_margin: f64,
     /// Smallest true distance of a clear verdict (m).
@@ -181,6 +188,13 @@ impl SoundnessReport {
         (self.eligible > 0).then(|| self.eligible_stopped as f64 / self.eligible as f64)
     }
 
+    /// [`Self::conservativeness`] over the eligible verdicts that the motion
+    /// allowance does not force to stop.
+    pub fn conservativeness_beyond_allowance(&self) -> Option<f64> {
+        let n = self.eligible - self.eligible_forced;
+        (n > 0).then(|| (self.eligible_stopped - self.eligible_forced_stopped) as f64 / n as f64)
+    }
+
     /// This report and `other` together.
     pub fn merged(mut self, other: Self) -> Self {
         self.scenes += other.scenes;
@@ -196,6 +210,8 @@ impl SoundnessReport {
         self.eligible += other.eligible;
         self.eligible_stopped += other.eligible_stopped;
         self.eligible_unobserved += other.eligible_unobserved;
+        self.eligible_forced += other.eligible_forced;
+        self.eligible_forced_stopped += other.eligible_forced_stopped;
         self.max_sampling_margin = self.max_sampling_margin.max(other.max_sampling_margin);
         self.closest_clear = self.closest_clear.min(other.closest_clear);
         let room = MAX_FINDINGS.saturating_sub(self.findings.len());
@@ -229,6 +245,8 @@ mod tests {
         a.verdicts.clear = 3;
         a.eligible = 4;
         a.eligible_stopped = 1;
+        a.eligible_forced = 2;
+        a.eligible_forced_stopped = 1;
         a.closest_clear = 0.5;
         let mut b = SoundnessReport::empty();
         b.scenes = 2;
@@ -241,6 +259,7 @@ mod tests {
         assert_eq!(m.classes[1], 1);
         assert_eq!(m.closest_clear, 0.3);
         assert_eq!(m.conservativeness(), Some(0.25));
+        assert_eq!(m.conservativeness_beyond_allowance(), Some(0.0));
         assert_eq!(SoundnessReport::empty().conservativeness(), None);
     }
 }

@@ -13,6 +13,7 @@ use glam::DVec3;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rayon::prelude::*;
+use shroud_core::cloud::NeighbourIndex;
 use shroud_core::guard::{
     check_shapes, CollisionGuard, Envelope, GuardConfig, GuardPolicy, SurrogateInput, WorldShape,
 };
@@ -72,7 +73,12 @@ pub fn run(
 /// exact) than the shape's radius, the stop distance and the way an obstacle
 /// at the speed bound travels from the scan until the horizon. The depth is
 /// concave, so the samples (a capsule's ends and middle) bound the whole
-/// core. A pose outside it has no provable `clear`, so it does not count
+/// core. Each sample is as far from every ray that returned nothing, widened
+/// by the gap between rays ([`Sensor::clearance_from_empty_rays`](super::sensors::Sensor::clearance_from_empty_rays)): a ray
+/// without return proves no space free, since a black solid returns nothing
+/// either (checked at the samples only, which can count a capsule whose
+/// middle passes nearer an empty ray as seen: that only makes the figure
+/// worse). A pose outside it has no provable `clear`, so it does not count
 /// towards conservativeness.
 fn in_seen_space(
     cores: &[Core],
@@ -91,17 +97,35 @@ fn in_seen_space(
                 + params.max_obstacle_speed * (age + params.horizon);
             v.envelope.is_some()
                 && age <= params.max_age
-                && c.samples()
-                    .iter()
-                    .all(|&p| sensor.sees(p, &scene.solids) && sensor.depth_in_view(p) >= reach)
+                && c.samples().iter().all(|&p| {
+                    sensor.sees(p, &scene.solids)
+                        && sensor.depth_in_view(p) >= reach
+                        && sensor.clearance_from_empty_rays(p, &v.empty) >= reach
+                })
         })
     })
+}
+
+/// The smallest clearance any guard fed these views may clear at time `t`:
+/// the stop distance plus the distance an obstacle at the speed bound covers
+/// from the freshest fitted view's scan (with the clock offset the guard
+/// adds) to the end of the horizon.
+fn required_clearance(views: &[View], params: &SoundnessParams, t: f64) -> f64 {
+    let offset = DEFAULT_MAX_CLOCK_OFFSET_NS as f64 * 1e-9;
+    let age = views
+        .iter()
+        .filter(|v| v.envelope.is_some())
+        .map(|v| (t - v.setup.sensor.time).max(0.0) + offset)
+        .fold(f64::INFINITY, f64::min);
+    params.stop_distance + params.max_obstacle_speed * (age + params.horizon)
 }
 
 /// One sensor's contribution: its cloud and, if it could be fitted, its view.
 struct View {
     setup: SensorSetup,
     cloud: Vec<[f32; 3]>,
+    /// Its rays that returned nothing ([`Sensor::empty_rays`](super::sensors::Sensor::empty_rays)).
+    empty: NeighbourIndex,
     envelope: Option<Envelope>,
 }
 
@@ -111,7 +135,8 @@ fn views_of(scene: &SoundnessScene, params: &SoundnessParams) -> Vec<View> {
         .sensors
         .iter()
         .map(|setup| {
-            let cloud = setup.sensor.scan(&scene.solids);
+            let scan = setup.sensor.scan(&scene.solids);
+            let cloud = scan.points.clone();
             let envelope = (cloud.len() >= params.min_points)
                 .then(|| {
                     let options = FitOptions {
@@ -128,14 +153,21 @@ fn views_of(scene: &SoundnessScene, params: &SoundnessParams) -> Vec<View> {
                         .state_field_of_view
                         .then(|| setup.sensor.stated_field_of_view())
                         .flatten();
+                    let no_return = params
+                        .state_no_return
+                        .then(|| setup.sensor.stated_no_return(&scan))
+                        .flatten();
                     Envelope::new(&surrogate)
                         .ok()?
                         .with_field_of_view(stated)
+                        .ok()?
+                        .with_no_return(no_return.as_ref())
                         .ok()
                 })
                 .flatten();
             View {
                 setup: *setup,
+                empty: setup.sensor.empty_rays(&scan),
                 cloud,
                 envelope,
             }
@@ -271,10 +303,15 @@ pub fn run_case(
                 GuardVerdict::Clear | GuardVerdict::Stop | GuardVerdict::Unobserved
             );
             if judged && in_view && truth.0 > 2.0 * params.stop_distance {
+                let stopped = u64::from(decision.verdict != GuardVerdict::Clear);
                 report.eligible += 1;
-                report.eligible_stopped += u64::from(decision.verdict != GuardVerdict::Clear);
+                report.eligible_stopped += stopped;
                 report.eligible_unobserved +=
                     u64::from(decision.verdict == GuardVerdict::Unobserved);
+                if truth.0 <= required_clearance(&views, params, t) {
+                    report.eligible_forced += 1;
+                    report.eligible_forced_stopped += stopped;
+                }
             }
             if decision.verdict != GuardVerdict::Clear {
                 continue;

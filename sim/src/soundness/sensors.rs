@@ -5,6 +5,7 @@
 use super::rays::{cast, Hit};
 use super::solids::Solid;
 use glam::DVec3;
+use shroud_core::cloud::{dark_cones, EmptyRays, NeighbourIndex};
 use shroud_core::message;
 
 /// The rays a sensor casts, as bounds on the image plane at unit distance
@@ -47,6 +48,15 @@ impl FieldOfView {
             FieldOfView::Frustum { .. } => 4.0 * x * y,
         }
     }
+}
+
+/// One scan: the points, and per ray of the image grid (row-major,
+/// `columns` a row) whether it was cast and returned nothing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scan {
+    pub points: Vec<[f32; 3]>,
+    pub columns: usize,
+    pub empty: Vec<bool>,
 }
 
 /// How a sensor's rays leave it.
@@ -164,34 +174,134 @@ impl Sensor {
         spread * self.step * std::f64::consts::SQRT_2
     }
 
-    /// The points of one scan at the sensor's time: the first hit of every
-    /// ray, unless it is beyond range or on a black solid (which blocks the
-    /// ray all the same).
-    pub fn scan(&self, solids: &[Solid]) -> Vec<[f32; 3]> {
+    /// One scan at the sensor's time: the first hit of every ray, unless it
+    /// is beyond range or on a black solid (which blocks the ray all the
+    /// same), and which rays returned nothing.
+    pub fn scan(&self, solids: &[Solid]) -> Scan {
         let (ex, ey) = self.fov.extent();
         let (nx, ny) = (
             Self::half_count(ex, self.step),
             Self::half_count(ey, self.step),
         );
-        let mut points = Vec::new();
+        let columns = (2 * nx + 1) as usize;
+        let mut scan = Scan {
+            points: Vec::new(),
+            columns,
+            empty: Vec::with_capacity(columns * (2 * ny + 1) as usize),
+        };
         for j in -ny..=ny {
             for i in -nx..=nx {
                 let (x, y) = (i as f64 * self.step, j as f64 * self.step);
                 if !self.fov.contains(x, y) {
+                    scan.empty.push(false);
                     continue;
                 }
                 let (o, d) = self.ray(x, y);
-                let Some((s, hit)) = cast(o, d, solids, self.time) else {
-                    continue;
-                };
-                let dark = matches!(hit, Hit::Solid(k) if solids[k].black);
-                if s <= self.max_range && !dark {
-                    let p = o + d * s;
-                    points.push([p.x as f32, p.y as f32, p.z as f32]);
+                let hit = cast(o, d, solids, self.time)
+                    .filter(|&(s, hit)| {
+                        s <= self.max_range && !matches!(hit, Hit::Solid(k) if solids[k].black)
+                    })
+                    .map(|(s, _)| o + d * s);
+                scan.empty.push(hit.is_none());
+                if let Some(p) = hit {
+                    scan.points.push([p.x as f32, p.y as f32, p.z as f32]);
                 }
             }
         }
-        points
+        scan
+    }
+
+    /// The scan's rays that returned nothing, as its driver would state them
+    /// in the cloud (`shroud_core::cloud::dark_cones`): perspective rays only
+    /// (parallel rays have no apex). Neighbouring rays are at most `step
+    /// sqrt(2)` apart on the image plane at unit distance, which subtends at
+    /// most that angle (the derivative of atan is at most 1).
+    pub fn stated_no_return(&self, scan: &Scan) -> Option<message::NoReturn> {
+        if self.projection != Projection::Perspective || scan.columns == 0 {
+            return None;
+        }
+        let rays = EmptyRays {
+            rows: scan.empty.len() / scan.columns,
+            columns: scan.columns,
+            empty: &scan.empty,
+        };
+        let (nx, ny) = ((scan.columns / 2) as f64, (rays.rows / 2) as f64);
+        let direction = |k: usize| {
+            let (i, j) = (
+                (k % scan.columns) as f64 - nx,
+                (k / scan.columns) as f64 - ny,
+            );
+            self.ray(i * self.step, j * self.step).1
+        };
+        let spread = self.step * std::f64::consts::SQRT_2;
+        // A grid this fine never needs cones of 90 degrees: an error here
+        // would be a bug of the harness, so the view simply states nothing
+        // and the run's findings show it.
+        dark_cones(self.origin.to_array(), &rays, direction, spread)
+            .ok()
+            .flatten()
+    }
+
+    /// The scan's rays that returned nothing, for
+    /// [`Self::clearance_from_empty_rays`]: their unit directions
+    /// (perspective) or their lateral offsets from the origin (parallel).
+    pub fn empty_rays(&self, scan: &Scan) -> NeighbourIndex {
+        let rows = scan.empty.len() / scan.columns.max(1);
+        let (nx, ny) = ((scan.columns / 2) as f64, (rows / 2) as f64);
+        let rays = scan
+            .empty
+            .iter()
+            .enumerate()
+            .filter(|(_, &e)| e)
+            .map(|(k, _)| {
+                let (i, j) = (
+                    (k % scan.columns) as f64 - nx,
+                    (k / scan.columns) as f64 - ny,
+                );
+                let (o, d) = self.ray(i * self.step, j * self.step);
+                match self.projection {
+                    Projection::Perspective => d,
+                    Projection::Parallel { .. } => o - self.origin,
+                }
+            });
+        NeighbourIndex::new(rays.collect())
+    }
+
+    /// How far `p` lies from every ray that returned nothing (the whole
+    /// ray: a black object may stand anywhere along it), less the gap to
+    /// the neighbouring rays at `p`'s distance (`step sqrt(2)` radians, or
+    /// that times `reference` for parallel rays). Where this exceeds a
+    /// reach, every point within that reach is crossed by rays that
+    /// returned from beyond it or lies between such rays: space the sensor
+    /// proved free. The harness's own geometry: exact point-to-ray
+    /// distances to the nearest empty ray (a kd-tree over directions finds
+    /// the one at the smallest angle, hence the nearest).
+    pub fn clearance_from_empty_rays(&self, p: DVec3, empty: &NeighbourIndex) -> f64 {
+        let to = p - self.origin;
+        match self.projection {
+            Projection::Perspective => {
+                let length = to.length();
+                let gap = length * self.step * std::f64::consts::SQRT_2;
+                let Some((k, _)) = empty.nearest_one(to / length.max(1e-300)) else {
+                    return f64::INFINITY;
+                };
+                let d = empty.points()[k];
+                let along = to.dot(d);
+                let off = if along > 0.0 {
+                    (to - d * along).length()
+                } else {
+                    length
+                };
+                off - gap
+            }
+            Projection::Parallel { reference } => {
+                let lateral = to - self.look * to.dot(self.look);
+                let gap = reference * self.step * std::f64::consts::SQRT_2;
+                empty
+                    .nearest_one(lateral)
+                    .map_or(f64::INFINITY, |(_, distance)| distance - gap)
+            }
+        }
     }
 
     /// Whether the sensor saw the point `p` as free space at its scan time:
@@ -401,7 +511,7 @@ mod tests {
             0.01,
             0.0,
         );
-        let points = sensor.scan(&[]);
+        let points = sensor.scan(&[]).points;
         assert!(points.len() > 1000);
         assert!(points.len() <= sensor.ray_count());
         // Within range only: the rim of the cone is at 2 / cos(0.5) > 2.1.
@@ -436,7 +546,7 @@ mod tests {
             0.0,
         );
         sensor.projection = Projection::Parallel { reference: 2.0 };
-        let points = sensor.scan(&[]);
+        let points = sensor.scan(&[]).points;
         assert_eq!(points.len(), sensor.ray_count());
         let half = 2.0 * 0.3f64.tan() + 1e-6;
         assert!(points
@@ -467,7 +577,26 @@ mod tests {
             0.01,
             0.0,
         );
-        assert!(sensor.scan(&[black]).is_empty());
+        let scan = sensor.scan(&[black]);
+        assert!(scan.points.is_empty());
+        assert!(scan.empty.iter().all(|&e| e));
+        let stated = sensor
+            .stated_no_return(&scan)
+            .expect("a black disc fills the view");
+        assert_eq!(stated.apex, sensor.origin.to_array());
+        // Every ray's direction lies in some cone.
+        let directions = (0..scan.empty.len()).map(|k| {
+            let n = (scan.columns / 2) as f64;
+            let (i, j) = ((k % scan.columns) as f64 - n, (k / scan.columns) as f64 - n);
+            sensor.ray(i * sensor.step, j * sensor.step).1
+        });
+        for d in directions {
+            assert!(stated.cones.iter().any(|c| {
+                let axis = DVec3::from_array(c.axis);
+                axis.cross(d).length().atan2(axis.dot(d)) <= c.half_angle
+            }));
+        }
+        assert_eq!(sensor.stated_no_return(&sensor.scan(&[])), None);
         assert!(!sensor.sees(DVec3::new(0.0, 0.0, 0.2), &[black]));
         assert!(sensor.sees(DVec3::new(0.0, 0.0, 1.5), &[black]));
         assert!(sensor.sampling_margin() > 0.0);

@@ -17,8 +17,10 @@
 //!   triangle, a thin object between rays). When the cloud states its
 //!   sensor's field of view, space outside it counts as unseen
 //!   (`guard::field_of_view`), so the assumption is needed only inside it;
-//!   there, space behind an object as seen from an oblique sensor is still
-//!   taken as seen;
+//!   when it lists its rays without a return, their cones count as unseen
+//!   (`guard::no_return`), so a black object is covered wherever its image
+//!   holds a 2 x 2 block of rays. Space behind an object as seen from an
+//!   oblique sensor is still taken as seen;
 //! - obstacles move no faster than [`GuardConfig::max_obstacle_speed`];
 //! - the consumer moves on a verdict no longer than
 //!   [`GuardConfig::horizon`] after sending the joint state it answers (its

@@ -448,6 +448,76 @@ fn space_outside_a_stated_field_of_view_is_unobserved() {
     assert!(e.to_string().contains("half angle"), "{e}");
 }
 
+/// A black ball of radius 6 cm at (0.4, 0, 0.5) under a sensor 1.5 m above
+/// the floor's centre: its rays return nothing, but the floor seen around it
+/// keeps every triangle of an 8 x 8 grid, so without the empty rays stated
+/// a sphere 2 cm above the ball is `clear`. With them (`cloud::dark_cones` over the sensor's ray
+/// grid, as a driver states them), it is `unobserved`; a sphere away from
+/// the ball's cone stays clear.
+#[test]
+fn rays_without_return_are_unobserved_space() {
+    use crate::cloud::{dark_cones, EmptyRays};
+    let apex = DVec3::new(0.0, 0.0, 1.5);
+    let (ball, radius) = (DVec3::new(0.4, 0.0, 0.5), 0.06);
+    // A 201 x 201 pinhole grid over [-0.8, 0.8]^2 of the image plane at unit
+    // distance below the apex: the floor is hit at 1.5 times that.
+    let (n, step) = (201usize, 0.008);
+    let direction = |k: usize| {
+        let (i, j) = ((k % n) as f64 - 100.0, (k / n) as f64 - 100.0);
+        DVec3::new(i * step, j * step, -1.0).normalize()
+    };
+    let mut floor = Vec::new();
+    let mut empty = vec![false; n * n];
+    for (k, slot) in empty.iter_mut().enumerate() {
+        let d = direction(k);
+        // Ray against the ball: the nearest approach of the line to its centre.
+        let along = (ball - apex).dot(d);
+        if ((ball - apex) - d * along).length() <= radius {
+            *slot = true;
+            continue;
+        }
+        let p = apex + d * (1.5 / -d.z);
+        floor.push([p.x as f32, p.y as f32, 0.0]);
+    }
+    let rays = EmptyRays {
+        rows: n,
+        columns: n,
+        empty: &empty,
+    };
+    let spread = step * std::f64::consts::SQRT_2;
+    let no_return = dark_cones(apex.to_array(), &rays, direction, spread)
+        .unwrap()
+        .expect("the ball's rays are kept");
+    let touching = vec![sphere(1, [0.4, 0.0, 0.63], 0.05)];
+    let away = vec![sphere(1, [-0.5, 0.3, 0.6], 0.05)];
+    let plain = view_on_grid(&floor, TOP, 8, 0);
+    let mut g = guard(&["top"], GuardPolicy::default());
+    g.accept(0, plain.clone(), 0, WALL).unwrap();
+    let d = g.decide(&touching, 0).unwrap();
+    assert_eq!(
+        d.verdict,
+        GuardVerdict::Clear,
+        "the hole the test is about: {}",
+        d.reason
+    );
+    let mut stated = plain;
+    stated.envelope = stated.envelope.with_no_return(Some(&no_return)).unwrap();
+    let mut g = guard(&["top"], GuardPolicy::default());
+    g.accept(0, stated, 0, WALL).unwrap();
+    let d = g.decide(&touching, 0).unwrap();
+    assert_eq!(d.verdict, GuardVerdict::Unobserved, "{}", d.reason);
+    let d = g.decide(&away, 0).unwrap();
+    assert_eq!(d.verdict, GuardVerdict::Clear, "{}", d.reason);
+    // A cone that is not one is refused by name.
+    let mut bad = no_return.clone();
+    bad.cones[0].half_angle = f64::NAN;
+    let e = view(&floor, TOP, 0)
+        .envelope
+        .with_no_return(Some(&bad))
+        .unwrap_err();
+    assert!(e.to_string().contains("no_return"), "{e}");
+}
+
 #[test]
 fn unobserved_space_stops_by_policy_and_is_always_flagged() {
     // (Under `ignore`, views combine as if their clouds had seen everything.)
