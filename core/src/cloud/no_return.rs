@@ -2,9 +2,11 @@
 //! ([`NoReturn`]), for a sensor whose rays lie on a grid of rows and columns.
 //!
 //! Which empty rays count: those of an 8-connected group of empty rays that
-//! holds a full 2 x 2 block. An object whose image covers a disc of radius
-//! `sqrt(2)` ray spacings covers such a block wherever it falls on the grid,
-//! so every object larger than that is kept; what is dropped are lone
+//! holds a full 2 x 2 block. On a square grid of equal spacings, an object
+//! whose image covers a disc of radius `sqrt(2)` ray spacings covers such a
+//! block wherever it falls, so every object larger than that is kept (rows
+//! of a point budget that differ by a ray are shifted by up to a column,
+//! and unequal spacings count by the larger); what is dropped are lone
 //! dropouts and thin lines of them (a random 1 % dropout rate makes a 2 x 2
 //! block about once in 10^8 positions), which are below the resolution at
 //! which the scan can promise anything anyway, like objects between rays.
@@ -49,8 +51,8 @@ impl EmptyRays<'_> {
     }
 
     /// The empty rays that belong to a group holding a 2 x 2 block, as
-    /// indices into the grid.
-    pub fn kept(&self) -> Vec<usize> {
+    /// indices into the grid (`empty` holds `rows * columns` flags).
+    fn kept(&self) -> Vec<usize> {
         let n = self.rows * self.columns;
         let mut group = vec![usize::MAX; n];
         let mut kept = Vec::new();
@@ -107,15 +109,27 @@ fn angle(a: DVec3, b: DVec3) -> f64 {
 
 /// The cones of `rays`' kept empty rays, seen from `apex`: `direction(i)` is
 /// ray `i`'s unit direction, `spread` the largest angle between a ray and a
-/// neighbour (radians). `Ok(None)` when no empty ray is kept; an error when a
-/// tile would need a cone of 90 degrees or more (a grid too coarse for
-/// [`MAX_DARK_CONES`] tiles, a field of view near a half space).
+/// neighbour (radians). `Ok(None)` when no empty ray is kept; an error when
+/// `empty` is not `rows * columns` flags, or a tile would need a cone of 90
+/// degrees or more (a grid too coarse for [`MAX_DARK_CONES`] tiles, a field
+/// of view near a half space).
 pub fn dark_cones(
     apex: [f64; 3],
     rays: &EmptyRays<'_>,
     direction: impl Fn(usize) -> DVec3,
     spread: f64,
 ) -> Result<Option<NoReturn>, MessageError> {
+    if Some(rays.empty.len()) != rays.rows.checked_mul(rays.columns) {
+        return Err(MessageError::Invalid {
+            field: "no_return",
+            reason: format!(
+                "{} ray flags for a grid of {} x {}",
+                rays.empty.len(),
+                rays.rows,
+                rays.columns
+            ),
+        });
+    }
     let kept = rays.kept();
     if kept.is_empty() {
         return Ok(None);
@@ -168,8 +182,8 @@ mod tests {
 
     #[test]
     fn only_groups_holding_a_block_are_kept() {
-        // A lone dropout, a diagonal line of three, and an L of five joined
-        // to a 2 x 2 block.
+        // A lone dropout, a diagonal line of three, and a 2 x 2 block with a
+        // ray above it and one diagonally below.
         let empty = grid(
             8,
             8,
@@ -242,10 +256,12 @@ mod tests {
         for i in rays.kept() {
             let d = pinhole(i, columns, step);
             assert!(inside(d));
-            // Halfway to a diagonal neighbour is covered too.
+            // Up to a diagonal neighbour is covered too, every way.
             let (r, c) = ((i / columns) as f64, (i % columns) as f64);
-            let n = DVec3::new((c + 0.5 - 20.0) * step, (r + 0.5 - 15.0) * step, -1.0).normalize();
-            assert!(inside(n));
+            for (dr, dc) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
+                let n = DVec3::new((c + dc - 20.0) * step, (r + dr - 15.0) * step, -1.0);
+                assert!(inside(n.normalize()));
+            }
         }
         // A ray far from both is not.
         assert!(!inside(pinhole(18 * columns + 30, columns, step)));
@@ -269,12 +285,22 @@ mod tests {
             .unwrap();
         assert!(nr.cones.len() <= MAX_DARK_CONES && nr.cones.len() > MAX_DARK_CONES / 4);
         for i in (0..rows * columns).step_by(97) {
+            // A ray, and a direction `spread` off it, each in some cone.
             let d = direction(i);
-            assert!(nr
-                .cones
-                .iter()
-                .any(|c| angle(DVec3::from_array(c.axis), d) <= c.half_angle));
+            let off = (d + d.any_orthonormal_vector() * 0.003f64.tan()).normalize();
+            for probe in [d, off] {
+                assert!(nr
+                    .cones
+                    .iter()
+                    .any(|c| angle(DVec3::from_array(c.axis), probe) <= c.half_angle));
+            }
         }
+        let short = EmptyRays {
+            rows,
+            columns,
+            empty: &empty[1..],
+        };
+        assert!(dark_cones([0.0; 3], &short, direction, 0.003).is_err());
         let none = vec![false; rows * columns];
         let rays = EmptyRays {
             rows,

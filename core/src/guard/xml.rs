@@ -35,10 +35,11 @@ const MAX_NODES: u32 = 1_000_000;
 
 /// The document's root element, parsed by roxmltree (well-formedness,
 /// entities, namespaces; a DTD is allowed, as robot descriptions sometimes
-/// carry one, with roxmltree's guard against entity expansion). Elements
-/// keep their local names (`xacro:include` is `include`, which no URDF
-/// reader looks for); text, comments and processing instructions are
-/// dropped.
+/// carry one, with roxmltree's guard against entity expansion). URDF's
+/// elements and attributes have no namespace: those in one (a leftover
+/// `xacro:` element or attribute) are dropped, and a prefix without its
+/// `xmlns` declaration is an error, as XML has it. Text, comments and
+/// processing instructions are dropped.
 pub(crate) fn parse(text: &str) -> Result<Element, String> {
     let options = roxmltree::ParsingOptions {
         allow_dtd: true,
@@ -55,13 +56,14 @@ fn element_of(node: roxmltree::Node<'_, '_>, depth: usize) -> Result<Element, St
     }
     let children = node
         .children()
-        .filter(|c| c.is_element())
+        .filter(|c| c.is_element() && c.tag_name().namespace().is_none())
         .map(|c| element_of(c, depth + 1))
         .collect::<Result<_, _>>()?;
     Ok(Element {
         name: node.tag_name().name().to_string(),
         attributes: node
             .attributes()
+            .filter(|a| a.namespace().is_none())
             .map(|a| (a.name().to_string(), a.value().to_string()))
             .collect(),
         children,
@@ -120,5 +122,16 @@ mod tests {
         }
         let deep = "<a>".repeat(100) + &"</a>".repeat(100);
         assert!(parse(&deep).is_err());
+        // A prefix nobody declared.
+        assert!(parse("<robot><xacro:include/></robot>").is_err());
+    }
+
+    #[test]
+    fn namespaced_elements_and_attributes_are_not_urdf() {
+        let doc = r#"<robot xmlns:x="urn:x" x:name="other" name="r"><x:link name="no"/><link name="yes"/></robot>"#;
+        let root = parse(doc).unwrap();
+        assert_eq!(root.attribute("name"), Some("r"));
+        assert_eq!(root.children.len(), 1);
+        assert_eq!(root.child("link").unwrap().attribute("name"), Some("yes"));
     }
 }

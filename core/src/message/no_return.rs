@@ -15,8 +15,10 @@ const UNIT_TOLERANCE: f64 = 1e-6;
 
 /// The directions, from `apex`, in which the sensor's rays returned nothing:
 /// the union of `cones`. Each cone covers its rays and the space between them
-/// and their neighbours, so that an object touching a ray that came back empty
-/// lies in some cone wherever it is along the ray.
+/// and their neighbours. Which empty rays a producer lists is its choice;
+/// shroud's (`cloud::dark_cones`) lists the groups of empty rays that hold a
+/// 2 x 2 block, so that an object touching such a ray lies in some cone
+/// wherever it is along the ray, and leaves lone dropouts out.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct NoReturn {
     /// The optical centre, in the frame of the cloud's points.

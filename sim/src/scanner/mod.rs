@@ -138,6 +138,17 @@ impl RangeScanner {
                 check_points("resolution.points", points)?;
             }
         }
+        let (rays, rows) = self.layout();
+        if rows >= 2 && rays / rows >= 2 && self.ray_spread() >= MAX_RAY_SPREAD {
+            // Its empty rays could not be stated as cones narrower than 90
+            // degrees (`no_return`): such a grid says nothing of where it
+            // looked anyway.
+            return Err(SceneError::OutOfInterval {
+                parameter: "resolution".into(),
+                value: self.ray_spread(),
+                interval: "[0, pi/4) rad between neighbouring rays",
+            });
+        }
         check_positive("max_range", self.max_range)?;
         check_non_negative("range_noise", self.range_noise)?;
         check_finite("dropout", self.dropout)?;
@@ -336,13 +347,21 @@ impl RangeScanner {
         Ok(frame)
     }
 
+    /// A bound on the angle between a ray and any of its 8 neighbours: an
+    /// azimuth step of the narrower rows, plus as much again for the shift
+    /// between rows of different widths, plus an elevation step (on the
+    /// sphere an angle is at most the sum of the azimuth and elevation
+    /// differences).
+    fn ray_spread(&self) -> f64 {
+        let (rays, rows) = self.layout();
+        let narrow = (rays / rows).max(1);
+        2.0 * self.horizontal_fov / narrow as f64 + self.vertical_fov / rows as f64
+    }
+
     /// The empty rays of a scan as cones from the optical centre. Rows of a
     /// point budget differ by one ray at most; the grid is as wide as the
-    /// widest row (the narrower rows' last cell is no ray). A ray's
-    /// neighbours are at most one azimuth step of the narrower rows (plus
-    /// the shift between rows of different widths, at most another) and one
-    /// elevation step away, and on the sphere an angle is at most the sum of
-    /// the azimuth and elevation differences.
+    /// widest row (the narrower rows' last cell is no ray); neighbours are
+    /// at most [`Self::ray_spread`] apart.
     fn no_return(
         &self,
         sensor: &SensorPose,
@@ -362,8 +381,7 @@ impl RangeScanner {
             let elevation = angle_at(self.vertical_fov, rows, rows - 1 - row);
             glam::DVec3::from_array(sensor.direction(azimuth, elevation))
         };
-        let narrow = tables[0].len().max(1);
-        let spread = 2.0 * self.horizontal_fov / narrow as f64 + self.vertical_fov / rows as f64;
+        let spread = self.ray_spread();
         let apex = sensor.position.map(|c| f64::from(c as f32));
         let rays = EmptyRays {
             rows,
@@ -383,6 +401,10 @@ type RowScan = (Vec<[f32; 3]>, Vec<f32>, Vec<bool>);
 fn angle_at(fov: f64, n: usize, i: usize) -> (f64, f64) {
     (fov * ((i as f64 + 0.5) / n as f64 - 0.5)).sin_cos()
 }
+
+/// The widest angle between neighbouring rays a grid of several rows and
+/// columns may have.
+const MAX_RAY_SPREAD: f64 = std::f64::consts::FRAC_PI_4;
 
 /// The half angle a stated field of view takes across a single row or
 /// column of rays (a field of view needs a positive one).

@@ -24,7 +24,7 @@ pub use arms::{ArmKind, Arms, URDF_ARM};
 pub use report::{Finding, FindingClass, SoundnessReport, VerdictCounts};
 pub use run::{minimise, run, run_case, scene_seed};
 pub use scene::{SensorSetup, SoundnessScene};
-pub use sensors::{FieldOfView, Projection, Scan, Sensor};
+pub use sensors::{EmptyRayIndex, FieldOfView, Projection, Scan, Sensor};
 pub use solids::{Body, Solid};
 
 use shroud_core::guard::{GuardError, UnobservedPolicy};

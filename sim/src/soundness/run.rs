@@ -6,6 +6,7 @@
 use super::arms::{random_configuration, Arms};
 use super::report::{Finding, FindingClass, SoundnessReport, MAX_FINDINGS};
 use super::scene::{SensorSetup, SoundnessScene};
+use super::sensors::EmptyRayIndex;
 use super::solids::Solid;
 use super::truth::{nearest, nearest_surface_point, solid_distance, Core};
 use super::{SoundnessError, SoundnessParams};
@@ -13,7 +14,6 @@ use glam::DVec3;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rayon::prelude::*;
-use shroud_core::cloud::NeighbourIndex;
 use shroud_core::guard::{
     check_shapes, CollisionGuard, Envelope, GuardConfig, GuardPolicy, SurrogateInput, WorldShape,
 };
@@ -125,7 +125,7 @@ struct View {
     setup: SensorSetup,
     cloud: Vec<[f32; 3]>,
     /// Its rays that returned nothing ([`Sensor::empty_rays`](super::sensors::Sensor::empty_rays)).
-    empty: NeighbourIndex,
+    empty: EmptyRayIndex,
     envelope: Option<Envelope>,
 }
 

@@ -5,7 +5,8 @@
 use super::rays::{cast, Hit};
 use super::solids::Solid;
 use glam::DVec3;
-use shroud_core::cloud::{dark_cones, EmptyRays, NeighbourIndex};
+use kiddo::{ImmutableKdTree, SquaredEuclidean};
+use shroud_core::cloud::{dark_cones, EmptyRays};
 use shroud_core::message;
 
 /// The rays a sensor casts, as bounds on the image plane at unit distance
@@ -57,6 +58,22 @@ pub struct Scan {
     pub points: Vec<[f32; 3]>,
     pub columns: usize,
     pub empty: Vec<bool>,
+}
+
+/// A scan's rays that returned nothing ([`Sensor::empty_rays`]), with
+/// kiddo's kd-tree over them.
+pub struct EmptyRayIndex {
+    rays: Vec<DVec3>,
+    tree: Option<ImmutableKdTree<f64, 3>>,
+}
+
+impl EmptyRayIndex {
+    /// The stored vector nearest `q` (`None` when no ray was empty).
+    fn nearest(&self, q: DVec3) -> Option<DVec3> {
+        let tree = self.tree.as_ref()?;
+        let n = tree.nearest_one::<SquaredEuclidean>(&q.to_array());
+        Some(self.rays[n.item as usize])
+    }
 }
 
 /// How a sensor's rays leave it.
@@ -245,7 +262,7 @@ impl Sensor {
     /// The scan's rays that returned nothing, for
     /// [`Self::clearance_from_empty_rays`]: their unit directions
     /// (perspective) or their lateral offsets from the origin (parallel).
-    pub fn empty_rays(&self, scan: &Scan) -> NeighbourIndex {
+    pub fn empty_rays(&self, scan: &Scan) -> EmptyRayIndex {
         let rows = scan.empty.len() / scan.columns.max(1);
         let (nx, ny) = ((scan.columns / 2) as f64, (rows / 2) as f64);
         let rays = scan
@@ -264,7 +281,12 @@ impl Sensor {
                     Projection::Parallel { .. } => o - self.origin,
                 }
             });
-        NeighbourIndex::new(rays.collect())
+        let rays: Vec<DVec3> = rays.collect();
+        let coords: Vec<[f64; 3]> = rays.iter().map(|d| d.to_array()).collect();
+        EmptyRayIndex {
+            tree: (!coords.is_empty()).then(|| ImmutableKdTree::new_from_slice(&coords)),
+            rays,
+        }
     }
 
     /// How far `p` lies from every ray that returned nothing (the whole
@@ -276,16 +298,15 @@ impl Sensor {
     /// proved free. The harness's own geometry: exact point-to-ray
     /// distances to the nearest empty ray (a kd-tree over directions finds
     /// the one at the smallest angle, hence the nearest).
-    pub fn clearance_from_empty_rays(&self, p: DVec3, empty: &NeighbourIndex) -> f64 {
+    pub fn clearance_from_empty_rays(&self, p: DVec3, empty: &EmptyRayIndex) -> f64 {
         let to = p - self.origin;
         match self.projection {
             Projection::Perspective => {
                 let length = to.length();
                 let gap = length * self.step * std::f64::consts::SQRT_2;
-                let Some((k, _)) = empty.nearest_one(to / length.max(1e-300)) else {
+                let Some(d) = empty.nearest(to / length.max(1e-300)) else {
                     return f64::INFINITY;
                 };
-                let d = empty.points()[k];
                 let along = to.dot(d);
                 let off = if along > 0.0 {
                     (to - d * along).length()
@@ -298,8 +319,8 @@ impl Sensor {
                 let lateral = to - self.look * to.dot(self.look);
                 let gap = reference * self.step * std::f64::consts::SQRT_2;
                 empty
-                    .nearest_one(lateral)
-                    .map_or(f64::INFINITY, |(_, distance)| distance - gap)
+                    .nearest(lateral)
+                    .map_or(f64::INFINITY, |d| (d - lateral).length() - gap)
             }
         }
     }
