@@ -700,14 +700,17 @@ fn rays_without_return_are_stated_as_cones() {
     assert_eq!(frame.no_return, None);
 }
 
-/// A grid whose neighbouring rays are 45 degrees or more apart could not
+/// A grid whose neighbouring rays may be about 89 degrees apart could not
 /// state its empty rays as cones: it is refused when configured, by name,
 /// rather than failing its scans. A single row (a planar scan) is not.
 #[test]
 fn a_grid_too_coarse_to_state_its_empty_rays_is_refused() {
     let coarse = exact_scanner([0.0, 0.0, 10.0], [0.0; 3], [115.0, 60.0], [2, 2]);
     let e = coarse.validate().unwrap_err().to_string();
-    assert!(e.contains("resolution") && e.contains("neighbouring rays"), "{e}");
+    assert!(
+        e.contains("resolution") && e.contains("neighbouring rays"),
+        "{e}"
+    );
     let planar = exact_scanner([0.0, 0.0, 10.0], [0.0; 3], [115.0, 60.0], [2, 1]);
     planar.validate().unwrap();
 }

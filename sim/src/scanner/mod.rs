@@ -146,7 +146,7 @@ impl RangeScanner {
             return Err(SceneError::OutOfInterval {
                 parameter: "resolution".into(),
                 value: self.ray_spread(),
-                interval: "[0, pi/4) rad between neighbouring rays",
+                interval: "[0, 1.55) rad between neighbouring rays",
             });
         }
         check_positive("max_range", self.max_range)?;
@@ -402,9 +402,11 @@ fn angle_at(fov: f64, n: usize, i: usize) -> (f64, f64) {
     (fov * ((i as f64 + 0.5) / n as f64 - 0.5)).sin_cos()
 }
 
-/// The widest angle between neighbouring rays a grid of several rows and
-/// columns may have.
-const MAX_RAY_SPREAD: f64 = std::f64::consts::FRAC_PI_4;
+/// The widest angle between neighbouring rays (by [`RangeScanner::ray_spread`])
+/// a grid of several rows and columns may have: a ray's cone must stay
+/// narrower than 90 degrees (about 1.5708 rad). Grids coarse enough to need
+/// merged tiles have spreads far below it.
+const MAX_RAY_SPREAD: f64 = 1.55;
 
 /// The half angle a stated field of view takes across a single row or
 /// column of rays (a field of view needs a positive one).
