@@ -700,17 +700,20 @@ fn rays_without_return_are_stated_as_cones() {
     assert_eq!(frame.no_return, None);
 }
 
-/// A grid whose neighbouring rays may be about 89 degrees apart could not
-/// state its empty rays as cones: it is refused when configured, by name,
-/// rather than failing its scans. A single row (a planar scan) is not.
+/// A grid whose neighbouring rays may be 1.55 rad or more apart (by the
+/// azimuth plus the elevation step) could not state its empty rays as cones
+/// under 90 degrees: it is refused when configured, by name, rather than
+/// failing its scans. A single row (a planar scan) is not.
 #[test]
 fn a_grid_too_coarse_to_state_its_empty_rays_is_refused() {
-    let coarse = exact_scanner([0.0, 0.0, 10.0], [0.0; 3], [115.0, 60.0], [2, 2]);
+    let coarse = exact_scanner([0.0, 0.0, 10.0], [0.0; 3], [150.0, 100.0], [2, 2]);
     let e = coarse.validate().unwrap_err().to_string();
     assert!(
         e.contains("resolution") && e.contains("neighbouring rays"),
         "{e}"
     );
-    let planar = exact_scanner([0.0, 0.0, 10.0], [0.0; 3], [115.0, 60.0], [2, 1]);
+    let planar = exact_scanner([0.0, 0.0, 10.0], [0.0; 3], [150.0, 100.0], [2, 1]);
     planar.validate().unwrap();
+    let finer = exact_scanner([0.0, 0.0, 10.0], [0.0; 3], [150.0, 100.0], [3, 3]);
+    finer.validate().unwrap();
 }

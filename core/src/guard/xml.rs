@@ -36,9 +36,9 @@ const MAX_NODES: u32 = 1_000_000;
 /// The document's root element, parsed by roxmltree (well-formedness,
 /// entities, namespaces; a DTD is allowed, as robot descriptions sometimes
 /// carry one, with roxmltree's guard against entity expansion). URDF's
-/// elements and attributes have no namespace: those in one (a leftover
-/// `xacro:` element or attribute) are dropped, and a prefix without its
-/// `xmlns` declaration is an error, as XML has it. Text, comments and
+/// elements are in the root's namespace (usually none) and its attributes
+/// in none: others (a leftover `xacro:` element or attribute) are dropped,
+/// and a prefix without its `xmlns` declaration is an error, as XML has it. Text, comments and
 /// processing instructions are dropped.
 pub(crate) fn parse(text: &str) -> Result<Element, String> {
     let options = roxmltree::ParsingOptions {
@@ -46,18 +46,24 @@ pub(crate) fn parse(text: &str) -> Result<Element, String> {
         nodes_limit: MAX_NODES,
     };
     let doc = roxmltree::Document::parse_with_options(text, options).map_err(|e| e.to_string())?;
-    element_of(doc.root_element(), 1)
+    let root = doc.root_element();
+    element_of(root, root.tag_name().namespace(), 1)
 }
 
-/// `node` and its element children as an [`Element`] tree.
-fn element_of(node: roxmltree::Node<'_, '_>, depth: usize) -> Result<Element, String> {
+/// `node` and its element children in the root's namespace (none, or a
+/// default `xmlns` on `<robot>`) as an [`Element`] tree.
+fn element_of(
+    node: roxmltree::Node<'_, '_>,
+    namespace: Option<&str>,
+    depth: usize,
+) -> Result<Element, String> {
     if depth > MAX_DEPTH {
         return Err(format!("elements nested deeper than {MAX_DEPTH}"));
     }
     let children = node
         .children()
-        .filter(|c| c.is_element() && c.tag_name().namespace().is_none())
-        .map(|c| element_of(c, depth + 1))
+        .filter(|c| c.is_element() && c.tag_name().namespace() == namespace)
+        .map(|c| element_of(c, namespace, depth + 1))
         .collect::<Result<_, _>>()?;
     Ok(Element {
         name: node.tag_name().name().to_string(),
@@ -133,5 +139,8 @@ mod tests {
         assert_eq!(root.attribute("name"), Some("r"));
         assert_eq!(root.children.len(), 1);
         assert_eq!(root.child("link").unwrap().attribute("name"), Some("yes"));
+        // A default namespace on the root is the document's own.
+        let root = parse(r#"<robot xmlns="urn:u" name="r"><link name="a"/></robot>"#).unwrap();
+        assert_eq!(root.child("link").unwrap().attribute("name"), Some("a"));
     }
 }

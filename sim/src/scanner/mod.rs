@@ -348,14 +348,18 @@ impl RangeScanner {
     }
 
     /// A bound on the angle between a ray and any of its 8 neighbours: an
-    /// azimuth step of the narrower rows, plus as much again for the shift
-    /// between rows of different widths, plus an elevation step (on the
-    /// sphere an angle is at most the sum of the azimuth and elevation
-    /// differences).
+    /// azimuth step of the narrower rows (for a point budget plus as much
+    /// again for the shift between rows of different widths), plus an
+    /// elevation step (on the sphere an angle is at most the sum of the
+    /// azimuth and elevation differences).
     fn ray_spread(&self) -> f64 {
         let (rays, rows) = self.layout();
         let narrow = (rays / rows).max(1);
-        2.0 * self.horizontal_fov / narrow as f64 + self.vertical_fov / rows as f64
+        let shifts = match self.resolution {
+            ScanResolution::Grid { .. } => 1.0,
+            ScanResolution::Points(_) => 2.0,
+        };
+        shifts * self.horizontal_fov / narrow as f64 + self.vertical_fov / rows as f64
     }
 
     /// The empty rays of a scan as cones from the optical centre. Rows of a
@@ -404,8 +408,10 @@ fn angle_at(fov: f64, n: usize, i: usize) -> (f64, f64) {
 
 /// The widest angle between neighbouring rays (by [`RangeScanner::ray_spread`])
 /// a grid of several rows and columns may have: a ray's cone must stay
-/// narrower than 90 degrees (about 1.5708 rad). Grids coarse enough to need
-/// merged tiles have spreads far below it.
+/// narrower than 90 degrees (about 1.5708 rad). A scan with more than 1024
+/// empty rays merges them into tiles, whose cones are wider still: a grid of
+/// two or three rows (or columns) over a wide field of view can then fail
+/// its scan with a named error (`SceneError::NoReturn`), never state less.
 const MAX_RAY_SPREAD: f64 = 1.55;
 
 /// The half angle a stated field of view takes across a single row or

@@ -297,7 +297,8 @@ impl Sensor {
     /// returned from beyond it or lies between such rays: space the sensor
     /// proved free. The harness's own geometry: exact point-to-ray
     /// distances to the nearest empty ray (a kd-tree over directions finds
-    /// the one at the smallest angle, hence the nearest).
+    /// the one at the smallest angle, hence the nearest; over lateral
+    /// offsets for parallel rays).
     pub fn clearance_from_empty_rays(&self, p: DVec3, empty: &EmptyRayIndex) -> f64 {
         let to = p - self.origin;
         match self.projection {
@@ -577,6 +578,78 @@ mod tests {
         // A column over the footprint is seen at every height below the sensor.
         assert!(sensor.sees(DVec3::new(0.6, 0.0, 1.9), &[]));
         assert!(!sensor.sees(DVec3::new(0.7, 0.0, 1.9), &[]));
+    }
+
+    /// The clearance from empty rays is the brute-force minimum over every
+    /// empty ray of the scan (exact point-to-ray distances; point-to-line
+    /// for parallel rays) less the gap, for both projections.
+    #[test]
+    fn clearance_from_empty_rays_matches_brute_force() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(9);
+        let black = Solid {
+            body: Body::Sphere { radius: 0.3 },
+            centre: DVec3::new(0.2, 0.1, 0.8),
+            velocity: DVec3::ZERO,
+            black: true,
+        };
+        for parallel in [false, true] {
+            let mut sensor = Sensor::new(
+                DVec3::new(0.0, 0.0, 2.0),
+                -DVec3::Z,
+                FieldOfView::Frustum {
+                    half_x: 0.5,
+                    half_y: 0.4,
+                },
+                2.5,
+                0.02,
+                0.0,
+            );
+            if parallel {
+                sensor.projection = Projection::Parallel { reference: 2.0 };
+            }
+            let scan = sensor.scan(&[black]);
+            let index = sensor.empty_rays(&scan);
+            let (n, m) = (
+                (scan.columns / 2) as f64,
+                (scan.empty.len() / scan.columns / 2) as f64,
+            );
+            let rays: Vec<(DVec3, DVec3)> = (0..scan.empty.len())
+                .filter(|&k| scan.empty[k])
+                .map(|k| {
+                    let (i, j) = ((k % scan.columns) as f64 - n, (k / scan.columns) as f64 - m);
+                    sensor.ray(i * sensor.step, j * sensor.step)
+                })
+                .collect();
+            assert!(rays.len() > 100, "{parallel}: {}", rays.len());
+            let diagonal = sensor.step * std::f64::consts::SQRT_2;
+            for _ in 0..300 {
+                let p = DVec3::new(
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(0.0..1.9),
+                );
+                let off = |(o, d): &(DVec3, DVec3)| {
+                    let v = p - *o;
+                    let along = v.dot(*d);
+                    if along > 0.0 || parallel {
+                        (v - *d * along).length()
+                    } else {
+                        v.length()
+                    }
+                };
+                let nearest = rays.iter().map(off).fold(f64::INFINITY, f64::min);
+                let gap = match sensor.projection {
+                    Projection::Perspective => (p - sensor.origin).length() * diagonal,
+                    Projection::Parallel { reference } => reference * diagonal,
+                };
+                let got = sensor.clearance_from_empty_rays(p, &index);
+                assert!(
+                    (got - (nearest - gap)).abs() < 1e-9,
+                    "{parallel}: {got} vs {nearest}"
+                );
+            }
+        }
     }
 
     #[test]
