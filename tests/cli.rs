@@ -734,7 +734,7 @@ fn bad_log_filters_are_named_errors() {
     assert!(!stderr.contains("invalid log filter"), "{stderr}");
     let dir = tempfile::tempdir().unwrap();
     let file = path(dir.path(), "g.toml");
-    std::fs::write(&file, "[[node]]\nname = \"x\"\nrun = \"fit\"\n").unwrap();
+    std::fs::write(&file, "[[node]]\nname = \"x\"\nkind = \"fit\"\n").unwrap();
     fails_with(
         shroud(&["launch", s(&file), "--node-log", "x=loud", "--check"]),
         "invalid --node-log filter",

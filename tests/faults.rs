@@ -108,7 +108,7 @@ fn one_real(session: &zenoh::Session, key: &str) -> Vec<u8> {
 fn faults_killed_nodes_are_restarted_and_the_arm_waits_for_the_guard() {
     let _one = one_graph();
     let ns = "faults-kill";
-    let file = graphs::graph(ns, true, &graphs::demo_chain("0.3"));
+    let file = graphs::graph(ns, true, &[], &graphs::demo_chain("0.3"));
     let graph = Launched::start(&file, graphs::write_scene);
     let session = client_of(&graph.endpoint);
     let board = StatusBoard::new(&session, ns);
@@ -454,7 +454,7 @@ fn faults_a_killed_launcher_leaves_no_node_and_no_shared_memory() {
     let _one = one_graph();
     let ns = "faults-orphans";
     // 12000 points: 144 KB clouds, above the nodes' shared-memory threshold.
-    let file = graphs::graph(ns, true, &graphs::demo_chain("0.5"));
+    let file = graphs::graph(ns, true, &[], &graphs::demo_chain("0.5"));
     let mut graph = Launched::start(&file, |dir| {
         let scene = graphs::SCENE.replace("5000", "12000");
         std::fs::write(dir.join("scene.json"), scene).unwrap()

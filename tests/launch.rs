@@ -21,12 +21,15 @@ shutdown_grace_s = 5
 period_s = 0.5
 [[node]]
 name = "scanner"
-run = "scanner"
-args = ["--points", "2000", "--rate", "10", "--stream", "s"]
+kind = "scanner"
+outputs = { cloud = "s" }
+settings = { points = 2000, rate = 10 }
 [[node]]
 name = "fit"
-run = "fit"
-args = ["--input", "s", "--grid", "10x10"]
+kind = "fit"
+inputs = { cloud = "s" }
+outputs = { surrogate = "s" }
+settings = { grid = "10x10" }
 "#;
 
 #[test]
@@ -133,17 +136,21 @@ fn a_node_without_output_readers_stops_on_sigterm() {
 #[test]
 fn a_failing_node_is_restarted_with_backoff_then_given_up() {
     let dir = tempfile::tempdir().unwrap();
-    // `--grid 0x0` makes the fit node exit with an error at once.
+    // `grid = "0x0"` passes the option parser (a grid is text) but makes the
+    // fit node exit with an error at once.
     let file = write_launch(
         dir.path(),
         r#"
 namespace = "e2e-restart"
+external = ["cloud/c"]
 [summary]
 enabled = false
 [[node]]
 name = "broken"
-run = "fit"
-args = ["--grid", "0x0"]
+kind = "fit"
+inputs = { cloud = "c" }
+outputs = { surrogate = "c" }
+settings = { grid = "0x0" }
 restart = "on-failure"
 max_restarts = 2
 backoff_ms = 100
@@ -169,22 +176,32 @@ backoff_max_ms = 1000
     assert!(!out.contains("panicked"), "{out}");
 }
 
+/// A fit node fed from outside, at line 2.
+const FIT: &str = "external = [\"cloud/c\"]\n[[node]]\nname = \"a\"\nkind = \"fit\"\n\
+                   inputs = { cloud = \"c\" }\noutputs = { surrogate = \"s\" }\n";
+
 #[test]
 fn bad_launch_files_are_named_errors() {
     let dir = tempfile::tempdir().unwrap();
     for (body, needle) in [
         (
-            "[[node]]\nname = \"a\"\nrun = \"fit\"\nargs = [\"--namespace\", \"x\"]",
-            "--namespace is set by the launcher",
+            format!("{FIT}settings = {{ namespace = \"x\" }}"),
+            "line 2: node \"a\": settings.namespace: --namespace is set by the launcher",
+        ),
+        (format!("namespace = \"a b\"\n{FIT}"), "namespace"),
+        ("[[node]]\nname = \"a\"".into(), "missing field `kind`"),
+        (String::new(), "no node"),
+        // A misspelt setting, refused with its line before any node starts.
+        (
+            format!("{FIT}settings = {{ gird = \"8x8\" }}"),
+            "line 2: node \"a\": settings.gird is not an option of a fit node",
         ),
         (
-            "namespace = \"a b\"\n[[node]]\nname = \"a\"\nrun = \"fit\"",
-            "namespace",
+            FIT.replace("external = [\"cloud/c\"]", ""),
+            "input cloud/c has no producer",
         ),
-        ("[[node]]\nname = \"a\"", "run"),
-        ("", "no node"),
     ] {
-        let file = write_launch(dir.path(), body);
+        let file = write_launch(dir.path(), &body);
         let mut p = Proc::start(&["launch", &file]);
         assert!(!p.wait_exit(LONG).success());
         let out = p.output();
@@ -262,20 +279,27 @@ fn the_guard_stops_the_arm_on_an_injected_collision() {
         &format!(
             r#"
 namespace = "e2e-guard"
+external = ["cloud/inj"]
 [summary]
 period_s = 0.5
 [[node]]
 name = "fit"
-run = "fit"
-args = ["--input", "inj", "--grid", "8x8"]
+kind = "fit"
+inputs = {{ cloud = "inj" }}
+outputs = {{ surrogate = "inj" }}
+settings = {{ grid = "8x8" }}
 [[node]]
 name = "guard"
-run = "guard"
-args = ["--arm-file", "{arm_file}", "--surrogate", "inj", "--max-age", "5", "--unobserved", "ignore"]
+kind = "guard"
+inputs = {{ surrogate = "inj", joints = "demo_arm" }}
+outputs = {{ collision = "demo_arm" }}
+settings = {{ arm_file = "{arm_file}", max_age = 5, unobserved = "ignore" }}
 [[node]]
 name = "arm"
-run = "arm"
-args = ["--arm-file", "{arm_file}", "--rate", "20"]
+kind = "arm"
+inputs = {{ collision = "demo_arm" }}
+outputs = {{ joints = "demo_arm" }}
+settings = {{ arm_file = "{arm_file}", rate = 20 }}
 "#
         ),
     );

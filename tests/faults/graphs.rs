@@ -18,54 +18,75 @@ pub fn write_scene(dir: &std::path::Path) {
     std::fs::write(dir.join("scene.json"), SCENE).unwrap();
 }
 
-/// A `[[node]]` table: restarted on failure after 0.5 s (doubling after each
-/// quick failure), its status every 0.2 s.
-pub fn node(name: &str, run: &str, args: &[&str]) -> String {
-    let args: Vec<String> = args
-        .iter()
-        .chain(&["--status-period", "0.2"])
-        .map(|a| format!("{a:?}"))
-        .collect();
+/// A `[[node]]` table of `kind` with its ports (TOML lines such as
+/// `inputs = { cloud = "s" }`) and its settings given as options
+/// (`["--grid", "10x10"]` is `grid = "10x10"`; an option without a value is a
+/// switch): restarted on failure after 0.5 s (doubling after each quick
+/// failure), its status every 0.2 s.
+pub fn node(name: &str, kind: &str, ports: &str, options: &[&str]) -> String {
+    let mut settings = vec!["status_period = 0.2".to_string()];
+    let mut rest = options.iter().peekable();
+    while let Some(option) = rest.next() {
+        let key = option.trim_start_matches("--").replace('-', "_");
+        match rest.next_if(|v| !v.starts_with("--")) {
+            Some(value) => settings.push(format!("{key} = {value:?}")),
+            None => settings.push(format!("{key} = true")),
+        }
+    }
     format!(
-        "[[node]]\nname = \"{name}\"\nrun = \"{run}\"\nargs = [{}]\nrestart = \"on-failure\"\nbackoff_ms = 500\n",
-        args.join(", ")
+        "[[node]]\nname = \"{name}\"\nkind = \"{kind}\"\n{ports}\nrestart = \"on-failure\"\nbackoff_ms = 500\n[node.settings]\n{}\n",
+        settings.join("\n")
     )
 }
 
-/// A launch file: namespace, shared memory on or off, the nodes.
-pub fn graph(ns: &str, shm: bool, nodes: &[String]) -> String {
+/// A launch file: namespace, shared memory on or off, the streams the test
+/// itself publishes (`kind/name`), the nodes.
+pub fn graph(ns: &str, shm: bool, external: &[&str], nodes: &[String]) -> String {
+    let external: Vec<String> = external.iter().map(|e| format!("{e:?}")).collect();
     format!(
-        "namespace = \"{ns}\"\nshutdown_grace_s = 5\n[zenoh]\nshm = {shm}\n[summary]\nperiod_s = 1.0\n{}",
+        "namespace = \"{ns}\"\nshutdown_grace_s = 5\nexternal = [{}]\n[zenoh]\nshm = {shm}\n[summary]\nperiod_s = 1.0\n{}",
+        external.join(", "),
         nodes.concat()
     )
 }
 
 fn fit(input: &str) -> String {
-    let args = ["--input", input, "--grid", "10x10", "--side", "sandwich"];
-    node("fit", "fit", &[&args[..], &["--dir", "0,0,-1"]].concat())
+    let ports =
+        format!("inputs = {{ cloud = \"{input}\" }}\noutputs = {{ surrogate = \"{input}\" }}");
+    let args = ["--grid", "10x10", "--side", "sandwich", "--dir", "0,0,-1"];
+    node("fit", "fit", &ports, &args)
 }
 
+/// The ports of the guard and the arm of the demo arm.
+const GUARD_PORTS: &str = "inputs = { surrogate = \"SURROGATE\", joints = \"demo_arm\" }\n\
+                           outputs = { collision = \"demo_arm\" }";
+const ARM_PORTS: &str =
+    "inputs = { collision = \"demo_arm\" }\noutputs = { joints = \"demo_arm\" }";
+
 fn guard(surrogate: &str, max_age: &str) -> String {
-    let args = ["--arm-file", ARM_FILE, "--surrogate", surrogate];
     let policy = ["--max-age", max_age, "--unobserved", "ignore"];
-    node("guard", "guard", &[&args[..], &policy].concat())
+    let ports = GUARD_PORTS.replace("SURROGATE", surrogate);
+    node(
+        "guard",
+        "guard",
+        &ports,
+        &[&["--arm-file", ARM_FILE][..], &policy].concat(),
+    )
 }
 
 fn arm() -> String {
-    node("arm", "arm", &["--arm-file", ARM_FILE, "--rate", "50"])
+    node(
+        "arm",
+        "arm",
+        ARM_PORTS,
+        &["--arm-file", ARM_FILE, "--rate", "50"],
+    )
 }
 
 /// The scanner of `{dir}/scene.json` at 10 Hz on stream `s`.
 pub fn scanner() -> String {
-    let args = [
-        "--config",
-        "{dir}/scene.json",
-        "--rate",
-        "10",
-        "--stream",
-        "s",
-    ];
-    node("scanner", "scanner", &args)
+    let args = ["--config", "{dir}/scene.json", "--rate", "10"];
+    node("scanner", "scanner", "outputs = { cloud = \"s\" }", &args)
 }
 
 /// The demo's chain: scanner → fit (a 10 x 10 sandwich) → guard (surrogates
@@ -76,8 +97,8 @@ pub fn demo_chain(max_age: &str) -> Vec<String> {
 
 /// The scanner and the fit of the demo, and the dashboard.
 pub fn stall_graph(ns: &str) -> String {
-    let dashboard = node("dashboard", "dashboard", &["--listen", "127.0.0.1:0"]);
-    graph(ns, true, &[scanner(), fit("s"), dashboard])
+    let dashboard = node("dashboard", "dashboard", "", &["--listen", "127.0.0.1:0"]);
+    graph(ns, true, &[], &[scanner(), fit("s"), dashboard])
 }
 
 /// Every node kind that subscribes, on stream `s` with no scanner (the test
@@ -85,19 +106,25 @@ pub fn stall_graph(ns: &str) -> String {
 /// guard and arm, the smooth fitter, the blend node (its parent the first
 /// cloud of `s`, its commands on `blend/blend`) and the dashboard.
 pub fn flood_graph(ns: &str) -> String {
-    let smooth = ["--input", "s", "--domain", "plane:-1.1,-1.1,1.1,1.1,2"];
-    let blend = ["--parent-stream", "s", "--stream", "blend"];
+    let smooth_ports = "inputs = { cloud = \"s\" }\noutputs = { smooth = \"s\" }";
+    let blend_ports =
+        "inputs = { cloud = \"s\", blend = \"blend\" }\noutputs = { cloud = \"blend\" }";
     let part = ["--child-part", "hemisphere", "--part-points", "500"];
     let dashboard = ["--listen", "127.0.0.1:0", "--arm-file", ARM_FILE];
     let nodes = [
         fit("s"),
         guard("s", "0.5"),
         arm(),
-        node("smooth", "smooth", &smooth),
-        node("blend", "blend", &[&blend[..], &part].concat()),
-        node("dashboard", "dashboard", &dashboard),
+        node(
+            "smooth",
+            "smooth",
+            smooth_ports,
+            &["--domain", "plane:-1.1,-1.1,1.1,1.1,2"],
+        ),
+        node("blend", "blend", blend_ports, &part),
+        node("dashboard", "dashboard", "", &dashboard),
     ];
-    graph(ns, false, &nodes)
+    graph(ns, false, &["cloud/s", "blend/blend"], &nodes)
 }
 
 /// `launch/lidar.toml` (an emulated URG on a tilt unit → serial node → fit
@@ -114,27 +141,23 @@ pub fn lidar_graph(ns: &str) -> String {
         "4",
     ];
     let device = [&["--device", "urg-04lx"][..], &link, &TILTING, &faults].concat();
-    let port = ["--port", "{dir}/urg", "--stream", "lidar"];
-    let lidar = [&["--device", "hokuyo"][..], &port, &TILTING].concat();
-    let fit = [
-        "--input", "lidar", "--grid", "16x16", "--side", "upper", "--dir", "0,0,-1",
-    ];
+    let lidar = [&["--device", "hokuyo", "--port", "{dir}/urg"][..], &TILTING].concat();
+    let fit_ports = "inputs = { cloud = \"lidar\" }\noutputs = { surrogate = \"lidar\" }";
+    let fit = ["--grid", "16x16", "--side", "upper", "--dir", "0,0,-1"];
     // As lidar.toml: sweeps of 1 s, so surrogates up to 2.5 s old vouch.
-    let guard = [
-        "--arm-file",
-        ARM_FILE,
-        "--surrogate",
-        "lidar",
-        "--max-age",
-        "2.5",
-    ];
+    let guard = ["--arm-file", ARM_FILE, "--max-age", "2.5"];
     let policy = ["--max-obstacle-speed", "0.05", "--unobserved", "ignore"];
     let nodes = [
-        node("urg", "device-sim", &device),
-        node("lidar", "serial", &lidar),
-        node("fit", "fit", &fit),
-        node("guard", "guard", &[&guard[..], &policy].concat()),
+        node("urg", "device-sim", "", &device),
+        node("lidar", "serial", "outputs = { cloud = \"lidar\" }", &lidar),
+        node("fit", "fit", fit_ports, &fit),
+        node(
+            "guard",
+            "guard",
+            &GUARD_PORTS.replace("SURROGATE", "lidar"),
+            &[&guard[..], &policy].concat(),
+        ),
         arm(),
     ];
-    graph(ns, true, &nodes)
+    graph(ns, true, &[], &nodes)
 }

@@ -70,7 +70,10 @@ mod tests {
     use crate::launch::LaunchFile;
 
     fn spec(extra: &str) -> NodeSpec {
-        let text = format!("[[node]]\nname = \"n\"\nrun = \"fit\"\n{extra}");
+        let text = format!(
+            "external = [\"cloud/c\"]\n[[node]]\nname = \"n\"\nkind = \"fit\"\n\
+             inputs = {{ cloud = \"c\" }}\noutputs = {{ surrogate = \"s\" }}\n{extra}"
+        );
         LaunchFile::from_toml_str(&text).unwrap().nodes.remove(0)
     }
 

@@ -10,8 +10,12 @@ pub enum LaunchError {
     NoNodes,
     #[error("two nodes are named {0:?}; node names must be unique")]
     DuplicateNode(String),
-    #[error("node {node:?}: {reason}")]
-    Node { node: String, reason: String },
+    #[error("line {line}: node {node:?}: {reason}")]
+    Node {
+        node: String,
+        line: usize,
+        reason: String,
+    },
     #[error("{field}: {reason}")]
     Invalid { field: String, reason: String },
 }

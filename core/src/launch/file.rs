@@ -1,6 +1,9 @@
 //! The launch-file schema (TOML). Documented for users in `launch/README.md`.
 
 use super::error::LaunchError;
+#[cfg(test)]
+use super::kind::Direction;
+use super::kind::NodeKind;
 use crate::message::check_name;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -62,15 +65,25 @@ impl Default for SummarySpec {
     }
 }
 
-/// One node of the graph: `shroud node <run> --name <name> <args...>`.
+/// One node of the graph: `shroud node <kind> --name <name>`, its options
+/// built from `settings`, `inputs` and `outputs`.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NodeSpec {
     pub name: String,
-    /// The node program (`scanner`, `fit`, `guard`, `arm`, ...).
-    pub run: String,
+    /// The node program.
+    pub kind: NodeKind,
+    /// The node's options by name (`grid = "20x20"` is `--grid 20x20`; `true`
+    /// is a switch; an array repeats the option). The launcher checks them
+    /// against the node's own parser before it starts anything.
     #[serde(default)]
-    pub args: Vec<String>,
+    pub settings: BTreeMap<String, toml::Value>,
+    /// Streams the node reads, by topic kind: `{ cloud = "spheres" }`.
+    #[serde(default)]
+    pub inputs: BTreeMap<String, StreamNames>,
+    /// Streams the node writes, by topic kind.
+    #[serde(default)]
+    pub outputs: BTreeMap<String, StreamNames>,
     #[serde(default)]
     pub env: BTreeMap<String, String>,
     #[serde(default)]
@@ -89,6 +102,31 @@ pub struct NodeSpec {
     /// The whole graph stops when this node stops for good (e.g. a test driver).
     #[serde(default)]
     pub critical: bool,
+    /// The line of the file where the node's table starts (1-based; 0 when the
+    /// spec was not read from a file).
+    #[serde(skip)]
+    pub line: usize,
+}
+
+/// One stream name or several: `"top"` or `["top", "front"]`.
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(from = "OneOrMany")]
+pub struct StreamNames(pub Vec<String>);
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum OneOrMany {
+    One(String),
+    Many(Vec<String>),
+}
+
+impl From<OneOrMany> for StreamNames {
+    fn from(value: OneOrMany) -> Self {
+        match value {
+            OneOrMany::One(name) => Self(vec![name]),
+            OneOrMany::Many(names) => Self(names),
+        }
+    }
 }
 
 fn default_max_restarts() -> u32 {
@@ -118,8 +156,37 @@ pub struct LaunchFile {
     /// Seconds a node gets to exit after SIGTERM before it is killed.
     #[serde(default = "default_grace_s")]
     pub shutdown_grace_s: f64,
-    #[serde(rename = "node", default)]
+    /// Streams that come from outside the file (another launcher, a test, a
+    /// robot's own publisher), as `kind/name`: inputs they feed need no
+    /// producer among the nodes.
+    #[serde(default)]
+    pub external: Vec<String>,
+    #[serde(rename = "node", default, deserialize_with = "nodes_with_offsets")]
     pub nodes: Vec<NodeSpec>,
+}
+
+/// Reads the node tables, keeping where each starts (as a byte offset in
+/// `line` until [`LaunchFile::from_toml_str`] turns it into a line number).
+fn nodes_with_offsets<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<NodeSpec>, D::Error> {
+    let spanned: Vec<toml::Spanned<NodeSpec>> = Vec::deserialize(d)?;
+    Ok(spanned
+        .into_iter()
+        .map(|s| {
+            let offset = s.span().start;
+            let mut node = s.into_inner();
+            node.line = offset;
+            node
+        })
+        .collect())
+}
+
+/// The 1-based line of a byte offset.
+fn line_of(text: &str, offset: usize) -> usize {
+    let offset = offset.min(text.len());
+    1 + text.as_bytes()[..offset]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
 }
 
 fn default_namespace() -> String {
@@ -131,7 +198,11 @@ fn default_grace_s() -> f64 {
 
 impl LaunchFile {
     pub fn from_toml_str(text: &str) -> Result<Self, LaunchError> {
-        let file: Self = toml::from_str(text).map_err(|e| LaunchError::Syntax(e.to_string()))?;
+        let mut file: Self =
+            toml::from_str(text).map_err(|e| LaunchError::Syntax(e.to_string()))?;
+        for node in &mut file.nodes {
+            node.line = line_of(text, node.line);
+        }
         file.validate()?;
         Ok(file)
     }
@@ -180,7 +251,7 @@ impl LaunchFile {
             }
             check_node(node)?;
         }
-        Ok(())
+        super::wiring::check_graph(self)
     }
 }
 
@@ -188,26 +259,8 @@ impl LaunchFile {
 /// may take it.
 pub const LAUNCHER_NAME: &str = "launcher";
 
-/// The node programs `run` may name: `shroud node <kind>` (nodes/ checks that
-/// this list is exactly its subcommands).
-pub const NODE_KINDS: [&str; 13] = [
-    "scanner",
-    "fit",
-    "guard",
-    "arm",
-    "serial",
-    "can",
-    "blend",
-    "smooth",
-    "device-sim",
-    "dashboard",
-    "foxglove",
-    "record",
-    "replay",
-];
-
-/// The options the launcher passes every child itself; `args` may not repeat
-/// them (nodes/ checks that this is exactly what it passes).
+/// The options the launcher passes every child itself; `settings` may not
+/// name them (nodes/ checks that this is exactly what it passes).
 pub const LAUNCHER_FLAGS: [&str; 7] = [
     "--log",
     "--name",
@@ -219,22 +272,11 @@ pub const LAUNCHER_FLAGS: [&str; 7] = [
 ];
 
 fn check_node(node: &NodeSpec) -> Result<(), LaunchError> {
-    let fail = |reason: String| LaunchError::Node {
-        node: node.name.clone(),
-        reason,
-    };
+    let fail = |reason: String| node.error(reason);
     check_name("name", &node.name).map_err(|e| fail(e.to_string()))?;
     if node.name == LAUNCHER_NAME {
         return Err(fail(format!(
             "the name {LAUNCHER_NAME:?} is the launcher's own (its status message)"
-        )));
-    }
-    check_name("run", &node.run).map_err(|e| fail(e.to_string()))?;
-    if !NODE_KINDS.contains(&node.run.as_str()) {
-        return Err(fail(format!(
-            "run = {:?} is not a node kind ({})",
-            node.run,
-            NODE_KINDS.join(", ")
         )));
     }
     if node.backoff_ms == 0 || node.backoff_max_ms < node.backoff_ms {
@@ -243,105 +285,301 @@ fn check_node(node: &NodeSpec) -> Result<(), LaunchError> {
             node.backoff_ms, node.backoff_max_ms
         )));
     }
-    for reserved in LAUNCHER_FLAGS {
-        if node
-            .args
-            .iter()
-            .any(|a| a == reserved || a.starts_with(&format!("{reserved}=")))
-        {
+    for key in node.settings.keys() {
+        let flag = format!("--{}", key.replace('_', "-"));
+        if LAUNCHER_FLAGS.contains(&flag.as_str()) {
             return Err(fail(format!(
-                "{reserved} is set by the launcher, not in args"
+                "settings.{key}: {flag} is set by the launcher, not in settings"
+            )));
+        }
+        if let Some(port) = node
+            .kind
+            .ports()
+            .iter()
+            .find(|p| flag == format!("--{}", p.flag))
+        {
+            let section = match port.direction {
+                super::kind::Direction::Input => "inputs",
+                super::kind::Direction::Output => "outputs",
+            };
+            return Err(fail(format!(
+                "settings.{key}: {flag} is wired by {section}.{}, not in settings",
+                port.topic
             )));
         }
     }
     Ok(())
 }
 
+impl NodeSpec {
+    /// An error about this node, naming it and its line.
+    pub fn error(&self, reason: String) -> LaunchError {
+        LaunchError::Node {
+            node: self.name.clone(),
+            line: self.line,
+            reason,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::launch::{wiring_mermaid, wiring_text};
 
     const DEMO: &str = r#"
 namespace = "lab"
 shutdown_grace_s = 2
 [zenoh]
 connect = ["tcp/10.0.0.1:7447"]
+
 [[node]]
 name = "scanner"
-run = "scanner"
-args = ["--points", "30000"]
+kind = "scanner"
+settings = { points = 30000 }
+outputs = { cloud = "table" }
 restart = "always"
+
 [[node]]
 name = "fit"
-run = "fit"
+kind = "fit"
+inputs = { cloud = "table" }
+outputs = { surrogate = "top" }
+settings = { grid = "20x20", dir = "0,0,-1" }
 env = { RUST_LOG = "debug" }
 "#;
 
+    /// A node table of `kind` named `x` with extra lines.
+    fn one(kind: &str, extra: &str) -> String {
+        format!("[[node]]\nname=\"x\"\nkind=\"{kind}\"\n{extra}\n")
+    }
+
+    const FIT_PORTS: &str = "inputs={cloud=\"c\"}\noutputs={surrogate=\"s\"}\n";
+    const FED: &str = "external=[\"cloud/c\"]\n";
+
     #[test]
-    fn parses_with_defaults() {
+    fn parses_with_defaults_and_lines() {
         let f = LaunchFile::from_toml_str(DEMO).unwrap();
         assert_eq!(f.namespace, "lab");
         assert_eq!(f.nodes.len(), 2);
+        assert_eq!(f.nodes[0].kind, NodeKind::Scanner);
+        assert_eq!(f.nodes[0].line, 7);
+        assert_eq!(f.nodes[1].line, 14);
         assert_eq!(f.nodes[0].restart, RestartPolicy::Always);
         assert_eq!(f.nodes[1].restart, RestartPolicy::OnFailure);
         assert_eq!(f.nodes[1].env["RUST_LOG"], "debug");
         assert_eq!(f.zenoh.listen, vec!["tcp/127.0.0.1:0".to_string()]);
         assert!(f.zenoh.shm && !f.zenoh.multicast);
+        assert_eq!(
+            f.nodes[1].port_args().unwrap(),
+            vec!["--input=table", "--output=top"]
+        );
     }
 
     #[test]
-    fn every_mistake_is_named() {
+    fn the_wiring_is_drawn() {
+        let f = LaunchFile::from_toml_str(DEMO).unwrap();
+        let text = wiring_text(&f).unwrap();
+        assert!(
+            text.contains("fit [fit]\n  reads  cloud/table from scanner\n  writes surrogate/top")
+        );
+        let chart = wiring_mermaid(&f).unwrap();
+        assert!(chart.starts_with("flowchart LR\n"), "{chart}");
+        assert!(chart.contains("n0 -- \"cloud/table\" --> n1"), "{chart}");
+    }
+
+    #[test]
+    fn every_mistake_is_named_with_its_line() {
+        let fit = |extra: &str| format!("{FED}{}", one("fit", &format!("{FIT_PORTS}{extra}")));
         let cases = [
             (
-                "namespace = \"a/b\"\n[[node]]\nname=\"x\"\nrun=\"fit\"",
-                "namespace",
+                format!("namespace = \"a/b\"\n{}", fit("")),
+                "namespace".to_string(),
             ),
-            ("", "no node"),
+            (String::new(), "no node".into()),
+            (format!("{}{}", fit(""), one("fit", "")), "two nodes".into()),
             (
-                "[[node]]\nname=\"x\"\nrun=\"fit\"\n[[node]]\nname=\"x\"\nrun=\"fit\"",
-                "two nodes",
-            ),
-            (
-                "[[node]]\nname=\"x\"\nrun=\"fit\"\nargs=[\"--name\",\"y\"]",
-                "--name",
+                fit("settings={name=\"y\"}"),
+                "line 2: node \"x\": settings.name: --name is set by the launcher".into(),
             ),
             (
-                "[[node]]\nname=\"x\"\nrun=\"fit\"\nbackoff_ms=0",
-                "backoff_ms",
+                fit("settings={input=\"y\"}"),
+                "--input is wired by inputs.cloud".into(),
             ),
-            ("[[node]]\nname=\"x\"\nrun=\"fitter\"", "not a node kind"),
-            ("[[node]]\nname=\"launcher\"\nrun=\"fit\"", "launcher's own"),
+            (fit("backoff_ms=0"), "backoff_ms".into()),
+            (one("fitter", ""), "unknown variant `fitter`".into()),
             (
-                "[[node]]\nname=\"x\"\nrun=\"fit\"\nrestart=\"sometimes\"",
-                "TOML",
+                fit("").replace("name=\"x\"", "name=\"launcher\""),
+                "launcher's own".into(),
             ),
-            ("[[node]]\nname=\"x\"\nrun=\"fit\"\ncolour=1", "TOML"),
+            (fit("restart=\"sometimes\""), "TOML".into()),
+            (fit("colour=1"), "TOML".into()),
             (
-                "[zenoh]\nmode=\"router\"\n[[node]]\nname=\"x\"\nrun=\"fit\"",
-                "zenoh.mode",
+                fit("args=[\"--grid\", \"8x8\"]"),
+                "unknown field `args`".into(),
+            ),
+            (
+                format!("{FED}[zenoh]\nmode=\"router\"\n{}", one("fit", FIT_PORTS)),
+                "zenoh.mode".into(),
+            ),
+            (
+                one("fit", "outputs={surrogate=\"s\"}"),
+                "inputs.cloud is required".into(),
+            ),
+            (
+                format!("{FED}{}", one("fit", "inputs={cloud=\"c\"}")),
+                "outputs.surrogate is required".into(),
+            ),
+            (
+                format!(
+                    "{FED}{}",
+                    one(
+                        "fit",
+                        "inputs={cloud=\"c\",joints=\"a\"}\noutputs={surrogate=\"s\"}"
+                    )
+                ),
+                "inputs.joints: a fit node reads no joints stream (its inputs: cloud)".into(),
+            ),
+            (
+                one("fit", "inputs={cloud=\"c\"}\noutputs={surrogate=\"s\"}"),
+                "input cloud/c has no producer".into(),
+            ),
+            (
+                format!(
+                    "{FED}{}",
+                    one(
+                        "fit",
+                        "inputs={cloud=[\"c\",\"d\"]}\noutputs={surrogate=\"s\"}"
+                    )
+                ),
+                "names 2 streams".into(),
+            ),
+            (
+                format!(
+                    "{FED}{}",
+                    one("fit", "inputs={cloud=\"c/d\"}\noutputs={surrogate=\"s\"}")
+                ),
+                "inputs.cloud".into(),
+            ),
+            (
+                format!("external=[\"clouds/c\"]\n{}", one("fit", FIT_PORTS)),
+                "not a topic kind".into(),
+            ),
+            (
+                format!(
+                    "external=[\"surrogate/s\"]\n{}",
+                    one(
+                        "guard",
+                        "inputs={surrogate=\"s\",joints=\"a\"}\noutputs={collision=\"b\"}"
+                    )
+                ),
+                "inputs.joints (a) and outputs.collision (b) are both --arm".into(),
+            ),
+            (
+                format!(
+                    "{FED}{}{}",
+                    one("fit", FIT_PORTS),
+                    one("fit", FIT_PORTS).replace("\"x\"", "\"y\"")
+                ),
+                "surrogate/s is also written by node \"x\"".into(),
             ),
         ];
         for (text, needle) in cases {
-            let err = LaunchFile::from_toml_str(text).unwrap_err().to_string();
-            assert!(err.contains(needle), "{text:?}: {err}");
+            let err = LaunchFile::from_toml_str(&text).unwrap_err().to_string();
+            assert!(err.contains(&needle), "{text:?}: {err}");
         }
     }
 
     #[test]
-    fn every_launcher_flag_is_refused_in_args_and_every_kind_runs() {
+    fn every_launcher_flag_is_refused_in_settings_and_every_kind_parses() {
         for flag in LAUNCHER_FLAGS {
-            for arg in [flag.to_string(), format!("{flag}=x")] {
-                let text = format!("[[node]]\nname=\"x\"\nrun=\"fit\"\nargs=[\"{arg}\"]");
-                let err = LaunchFile::from_toml_str(&text).unwrap_err().to_string();
-                assert!(err.contains(flag), "{arg}: {err}");
-            }
+            let key = flag.trim_start_matches("--");
+            let text = format!(
+                "{FED}{}",
+                one("fit", &format!("{FIT_PORTS}settings={{{key}=\"x\"}}"))
+            );
+            let err = LaunchFile::from_toml_str(&text).unwrap_err().to_string();
+            assert!(err.contains(flag), "{key}: {err}");
         }
         // --listen is the node's own business (a fixed endpoint across hosts).
-        let listen = "[[node]]\nname=\"x\"\nrun=\"fit\"\nargs=[\"--listen\",\"tcp/0.0.0.0:7448\"]";
-        assert!(LaunchFile::from_toml_str(listen).is_ok());
-        for kind in NODE_KINDS {
-            let text = format!("[[node]]\nname=\"x\"\nrun=\"{kind}\"");
-            assert!(LaunchFile::from_toml_str(&text).is_ok(), "{kind}");
+        let listen = format!(
+            "{FED}{}",
+            one(
+                "fit",
+                &format!("{FIT_PORTS}settings={{listen=\"tcp/0.0.0.0:7448\"}}")
+            )
+        );
+        assert!(LaunchFile::from_toml_str(&listen).is_ok());
+        // Each kind with its required ports named, fed from outside.
+        for kind in NodeKind::ALL {
+            let mut inputs = Vec::new();
+            let mut outputs = Vec::new();
+            let mut external = Vec::new();
+            for port in kind.ports().iter().filter(|p| p.required) {
+                // Ports sharing an option name the same stream.
+                let entry = format!("{}=\"{}\"", port.topic, port.flag);
+                match port.direction {
+                    Direction::Input => {
+                        external.push(format!("\"{}/{}\"", port.topic, port.flag));
+                        inputs.push(entry)
+                    }
+                    Direction::Output => outputs.push(entry),
+                }
+            }
+            let text = format!(
+                "external=[{}]\n{}",
+                external.join(","),
+                one(
+                    kind.as_str(),
+                    &format!(
+                        "inputs={{{}}}\noutputs={{{}}}",
+                        inputs.join(","),
+                        outputs.join(",")
+                    )
+                )
+            );
+            if let Err(e) = LaunchFile::from_toml_str(&text) {
+                panic!("{kind}: {e}\n{text}");
+            }
         }
+    }
+
+    #[test]
+    fn a_replay_names_its_topics_in_one_filter() {
+        let text = one(
+            "replay",
+            "settings={file=\"r.mcap\"}\noutputs={cloud=[\"a\",\"b\"],joints=\"arm\"}",
+        );
+        let f = LaunchFile::from_toml_str(&text).unwrap();
+        assert_eq!(
+            f.nodes[0].port_args().unwrap(),
+            vec!["--topics=cloud/a,cloud/b,joints/arm"]
+        );
+    }
+
+    #[test]
+    fn a_guard_and_an_arm_close_the_loop() {
+        let text = format!(
+            "{FED}{}{}{}",
+            one("fit", FIT_PORTS).replace("\"x\"", "\"f\""),
+            one(
+                "guard",
+                "inputs={surrogate=\"s\",joints=\"a\"}\noutputs={collision=\"a\"}"
+            )
+            .replace("\"x\"", "\"g\""),
+            one("arm", "inputs={collision=\"a\"}\noutputs={joints=\"a\"}")
+        );
+        let f = LaunchFile::from_toml_str(&text).unwrap();
+        assert_eq!(
+            f.nodes[1].port_args().unwrap(),
+            vec!["--surrogate=s", "--arm=a"]
+        );
+        let edges = f.edges().unwrap();
+        let into_guard: Vec<String> = edges
+            .iter()
+            .filter(|e| e.to.name == "g")
+            .map(|e| e.stream.to_string())
+            .collect();
+        assert_eq!(into_guard, vec!["surrogate/s", "joints/a"]);
     }
 }

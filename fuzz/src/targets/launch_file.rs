@@ -21,6 +21,7 @@ pub fn seeds() -> Vec<Vec<u8>> {
         include_str!("../../../launch/lidar.toml"),
         include_str!("../../../launch/multiview.toml"),
         include_str!("../../../launch/radar.toml"),
+        include_str!("../../../launch/replay.toml"),
         include_str!("../../../launch/scan.toml"),
     ]
     .iter()

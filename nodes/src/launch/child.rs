@@ -2,9 +2,9 @@
 //! group, tied to the launcher's life (parent-death signal and the node's own
 //! watch on our pid), and its output prefixed line by line.
 
+use super::plan::PlannedNode;
 use crate::transport::die_with_parent;
 use anyhow::{Context, Result};
-use shroud_core::launch::NodeSpec;
 #[cfg(doc)]
 use shroud_core::launch::LAUNCHER_FLAGS;
 use std::process::Stdio;
@@ -23,16 +23,17 @@ pub struct Wiring {
 }
 
 /// The child's command line: the launcher's own flags (exactly
-/// [`LAUNCHER_FLAGS`], which launch files may not repeat), then the node's
-/// `args`. `--log` is left out when the node's `env` sets `RUST_LOG`, so that
-/// the node reads that instead.
-fn command(spec: &NodeSpec, wiring: &Wiring) -> Result<Command> {
+/// [`LAUNCHER_FLAGS`], which launch files may not set), then the node's
+/// options from its settings and ports. `--log` is left out when the node's
+/// `env` sets `RUST_LOG`, so that the node reads that instead.
+fn command(node: &PlannedNode, wiring: &Wiring) -> Result<Command> {
+    let spec = &node.spec;
     let exe = std::env::current_exe().context("cannot find the shroud executable")?;
     let mut cmd = Command::new(exe);
     if !spec.env.contains_key("RUST_LOG") {
         cmd.arg("--log").arg(&wiring.log);
     }
-    cmd.arg("node").arg(&spec.run);
+    cmd.arg("node").arg(spec.kind.as_str());
     cmd.arg("--name").arg(&spec.name);
     cmd.arg("--namespace").arg(&wiring.namespace);
     cmd.arg("--mode").arg(&wiring.mode);
@@ -42,13 +43,14 @@ fn command(spec: &NodeSpec, wiring: &Wiring) -> Result<Command> {
     cmd.arg("--multicast")
         .arg(if wiring.multicast { "on" } else { "off" });
     cmd.arg("--shm").arg(if wiring.shm { "on" } else { "off" });
-    cmd.args(&spec.args);
+    cmd.args(&node.args);
     cmd.envs(&spec.env);
     Ok(cmd)
 }
 
-pub fn spawn(spec: &NodeSpec, wiring: &Wiring) -> Result<Child> {
-    let mut cmd = command(spec, wiring)?;
+pub fn spawn(node: &PlannedNode, wiring: &Wiring) -> Result<Child> {
+    let spec = &node.spec;
+    let mut cmd = command(node, wiring)?;
     cmd.stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped());
@@ -61,7 +63,7 @@ pub fn spawn(spec: &NodeSpec, wiring: &Wiring) -> Result<Child> {
     die_with_parent(cmd.as_std_mut());
     let mut child = cmd
         .spawn()
-        .with_context(|| format!("cannot start node {} ({})", spec.name, spec.run))?;
+        .with_context(|| format!("cannot start node {} ({})", spec.name, spec.kind))?;
     if let Some(out) = child.stdout.take() {
         tokio::spawn(prefix_lines(out, spec.name.clone(), false));
     }
@@ -109,8 +111,17 @@ mod tests {
     use super::*;
     use shroud_core::launch::{LaunchFile, LAUNCHER_FLAGS};
 
+    /// A fit node fed from outside, with extra lines.
+    fn fit(extra: &str) -> String {
+        format!(
+            "external=[\"cloud/c\"]\n[[node]]\nname=\"x\"\nkind=\"fit\"\n\
+             inputs={{cloud=\"c\"}}\noutputs={{surrogate=\"s\"}}\n{extra}"
+        )
+    }
+
     fn flags_of(text: &str) -> Vec<String> {
         let file = LaunchFile::from_toml_str(text).unwrap();
+        let nodes = super::super::plan::plan(&file).unwrap();
         let wiring = Wiring {
             namespace: "ns".into(),
             mode: "peer".into(),
@@ -119,18 +130,25 @@ mod tests {
             shm: true,
             log: "info".into(),
         };
-        let cmd = command(&file.nodes[0], &wiring).unwrap();
+        let cmd = command(&nodes[0], &wiring).unwrap();
         let args: Vec<String> = cmd
             .as_std()
             .get_args()
             .map(|a| a.to_string_lossy().into_owned())
             .collect();
-        args.into_iter().filter(|a| a.starts_with("--")).collect()
+        // The node's own options come last, exactly as planned.
+        let own = args.len() - nodes[0].args.len();
+        assert_eq!(args[own..], nodes[0].args[..]);
+        args[..own]
+            .iter()
+            .filter(|a| a.starts_with("--"))
+            .cloned()
+            .collect()
     }
 
     #[test]
     fn the_launcher_passes_exactly_its_reserved_flags() {
-        let mut flags = flags_of("[[node]]\nname=\"x\"\nrun=\"fit\"");
+        let mut flags = flags_of(&fit(""));
         flags.sort();
         flags.dedup();
         let mut reserved: Vec<String> = LAUNCHER_FLAGS.iter().map(|f| f.to_string()).collect();
@@ -140,7 +158,7 @@ mod tests {
 
     #[test]
     fn a_node_with_its_own_rust_log_gets_no_log_flag() {
-        let flags = flags_of("[[node]]\nname=\"x\"\nrun=\"fit\"\nenv={RUST_LOG=\"debug\"}");
+        let flags = flags_of(&fit("env={RUST_LOG=\"debug\"}"));
         assert!(!flags.contains(&"--log".to_string()), "{flags:?}");
     }
 }

@@ -8,12 +8,13 @@
 mod child;
 mod monitor;
 mod output;
+mod plan;
 mod roster;
 mod supervise;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use shroud_core::launch::LaunchFile;
+use shroud_core::launch::{wiring_mermaid, wiring_text, LaunchFile};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -27,9 +28,13 @@ pub struct LaunchArgs {
     /// Log filter handed to every node.
     #[arg(long, default_value = "info,zenoh=warn")]
     pub node_log: String,
-    /// Print the endpoint nodes connect to and exit (for debugging the file).
+    /// Check the file and every node's settings, print each node's command
+    /// line, and exit.
     #[arg(long)]
     pub check: bool,
+    /// Check the file, print its wiring (text, then a Mermaid flowchart) and exit.
+    #[arg(long, conflicts_with = "check")]
+    pub graph: bool,
 }
 
 pub fn run(args: LaunchArgs) -> Result<()> {
@@ -41,17 +46,23 @@ pub fn run(args: LaunchArgs) -> Result<()> {
         .map_err(|e| anyhow::anyhow!("invalid --node-log filter {:?}: {e}", args.node_log))?;
     let text = std::fs::read_to_string(&args.file)
         .with_context(|| format!("cannot read launch file {}", args.file.display()))?;
-    let file = LaunchFile::from_toml_str(&text)
-        .with_context(|| format!("launch file {}", args.file.display()))?;
+    let context = || format!("launch file {}", args.file.display());
+    let file = LaunchFile::from_toml_str(&text).with_context(context)?;
+    // Every node's settings against its own parser, before anything runs.
+    let nodes = plan::plan(&file).with_context(context)?;
     if args.check {
-        for node in &file.nodes {
-            println!(
-                "{}: shroud node {} {}",
-                node.name,
-                node.run,
-                node.args.join(" ")
-            );
+        for node in &nodes {
+            let (name, kind) = (&node.spec.name, node.spec.kind);
+            println!("{name}: shroud node {kind} {}", node.args.join(" "));
         }
+        return Ok(());
+    }
+    if args.graph {
+        print!("{}", wiring_text(&file).with_context(context)?);
+        println!(
+            "\n```mermaid\n{}```",
+            wiring_mermaid(&file).with_context(context)?
+        );
         return Ok(());
     }
     // Our own prefixed lines must not panic if whoever reads them goes away.
@@ -66,7 +77,7 @@ pub fn run(args: LaunchArgs) -> Result<()> {
         .context("cannot start the async runtime")?;
     let duration = (args.duration > 0.0).then(|| Duration::from_secs_f64(args.duration));
     let shm = file.zenoh.shm;
-    let outcome = runtime.block_on(supervise::run_graph(file, args.node_log, duration));
+    let outcome = runtime.block_on(supervise::run_graph(file, nodes, args.node_log, duration));
     // The children have stopped and the session is closed: their segments and
     // ours are orphans now, which zenoh alone would leave in /dev/shm.
     if shm {

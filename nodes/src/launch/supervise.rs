@@ -5,10 +5,11 @@
 use super::child::{self, Wiring};
 use super::monitor;
 use super::output;
+use super::plan::PlannedNode;
 use super::roster::{self, Roster};
 use crate::transport::{shutdown_signal, OnOff, ZenohArgs};
 use anyhow::Result;
-use shroud_core::launch::{Backoff, LaunchFile, NodeSpec, RestartDecision};
+use shroud_core::launch::{Backoff, LaunchFile, RestartDecision};
 use std::time::{Duration, Instant};
 use tokio::sync::watch;
 use tokio::task::JoinSet;
@@ -31,7 +32,12 @@ enum OutcomeKind {
     GaveUp,
 }
 
-pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>) -> Result<()> {
+pub async fn run_graph(
+    file: LaunchFile,
+    planned: Vec<PlannedNode>,
+    log: String,
+    duration: Option<Duration>,
+) -> Result<()> {
     let z = &file.zenoh;
     let hub = ZenohArgs {
         namespace: file.namespace.clone(),
@@ -68,9 +74,9 @@ pub async fn run_graph(file: LaunchFile, log: String, duration: Option<Duration>
     let (stop_tx, stop_rx) = watch::channel(false);
     let roster = Roster::default();
     let mut nodes = JoinSet::new();
-    for spec in &file.nodes {
+    for node in planned {
         nodes.spawn(supervise(
-            spec.clone(),
+            node,
             wiring.clone(),
             stop_rx.clone(),
             grace,
@@ -172,13 +178,14 @@ fn exited(name: &str, status: std::io::Result<std::process::ExitStatus>) -> bool
 }
 
 async fn supervise(
-    spec: NodeSpec,
+    node: PlannedNode,
     wiring: Wiring,
     mut stop: watch::Receiver<bool>,
     grace: Duration,
     roster: Roster,
 ) -> Outcome {
-    let mut backoff = Backoff::new(&spec);
+    let spec = &node.spec;
+    let mut backoff = Backoff::new(spec);
     let outcome = |kind| Outcome {
         name: spec.name.clone(),
         critical: spec.critical,
@@ -189,7 +196,7 @@ async fn supervise(
             return outcome(OutcomeKind::Stopped);
         }
         let started = Instant::now();
-        let success = match child::spawn(&spec, &wiring) {
+        let success = match child::spawn(&node, &wiring) {
             Ok(mut process) => {
                 let pid = process.id().unwrap_or(0);
                 output::out(format!("[launch] started {} (pid {pid})", spec.name));

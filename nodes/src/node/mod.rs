@@ -90,33 +90,3 @@ pub fn run(command: NodeCommand) -> Result<()> {
         NodeCommand::List(args) => list::run(args),
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use clap::CommandFactory;
-
-    #[derive(clap::Parser)]
-    struct Wrap {
-        #[command(subcommand)]
-        node: NodeCommand,
-    }
-
-    /// Launch files are validated against `NODE_KINDS` in core: it must name
-    /// exactly the node programs (every subcommand but `list`).
-    #[test]
-    fn launch_files_know_every_node_kind() {
-        let mut kinds: Vec<String> = Wrap::command()
-            .get_subcommands()
-            .map(|c| c.get_name().to_string())
-            .filter(|n| n != "list")
-            .collect();
-        kinds.sort();
-        let mut known: Vec<String> = shroud_core::launch::NODE_KINDS
-            .iter()
-            .map(|k| k.to_string())
-            .collect();
-        known.sort();
-        assert_eq!(kinds, known);
-    }
-}

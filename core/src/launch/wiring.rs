@@ -1,0 +1,301 @@
+//! The graph a launch file declares: every node's ports checked against its
+//! kind, every input fed by a producer (or declared external), and the
+//! options that carry the streams' names to each node.
+
+use super::error::LaunchError;
+use super::file::{LaunchFile, NodeSpec};
+use super::kind::{Direction, FlagStyle, Port};
+use crate::message::{check_name, TopicKind};
+use std::collections::BTreeMap;
+use std::fmt;
+
+/// A topic of the namespace: `cloud/spheres` is `shroud/<ns>/cloud/spheres`.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Stream {
+    pub topic: TopicKindName,
+    pub name: String,
+}
+
+/// A topic kind's name, ordered for stable output.
+pub type TopicKindName = &'static str;
+
+impl fmt::Display for Stream {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}/{}", self.topic, self.name)
+    }
+}
+
+impl Stream {
+    /// Parses `kind/name` (an entry of `external`).
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let (kind, name) = text
+            .split_once('/')
+            .ok_or_else(|| format!("{text:?} is not kind/name"))?;
+        let topic = TopicKind::parse(kind)
+            .ok_or_else(|| format!("{text:?}: {kind:?} is not a topic kind"))?;
+        check_name("stream", name).map_err(|e| format!("{text:?}: {e}"))?;
+        Ok(Self {
+            topic: topic.as_str(),
+            name: name.to_owned(),
+        })
+    }
+}
+
+/// A stream read or written by one node through one of its ports.
+#[derive(Debug, Clone)]
+pub struct Wire<'a> {
+    pub port: &'static Port,
+    pub stream: Stream,
+    pub node: &'a NodeSpec,
+}
+
+impl NodeSpec {
+    /// The node's ports with the streams the file names for them, in the
+    /// order of its kind's port table.
+    pub fn wires(&self) -> Result<Vec<Wire<'_>>, LaunchError> {
+        self.check_port_keys(Direction::Input)?;
+        self.check_port_keys(Direction::Output)?;
+        let mut wires = Vec::new();
+        for port in self.kind.ports() {
+            let names = self.names_of(port);
+            if names.is_empty() && port.required {
+                return Err(self.error(format!(
+                    "{}.{} is required: the {} stream it {} (option --{})",
+                    section(port.direction),
+                    port.topic,
+                    port.topic,
+                    verb(port.direction),
+                    port.flag
+                )));
+            }
+            if names.len() > 1 && !port.many {
+                return Err(self.error(format!(
+                    "{}.{} names {} streams; a {} node {} one",
+                    section(port.direction),
+                    port.topic,
+                    names.len(),
+                    self.kind,
+                    verb(port.direction)
+                )));
+            }
+            for name in names {
+                check_name("stream", name).map_err(|e| {
+                    self.error(format!("{}.{}: {e}", section(port.direction), port.topic))
+                })?;
+                wires.push(Wire {
+                    port,
+                    stream: Stream {
+                        topic: port.topic.as_str(),
+                        name: name.clone(),
+                    },
+                    node: self,
+                });
+            }
+        }
+        self.check_shared_flags(&wires)?;
+        Ok(wires)
+    }
+
+    fn names_of(&self, port: &Port) -> &[String] {
+        let table = match port.direction {
+            Direction::Input => &self.inputs,
+            Direction::Output => &self.outputs,
+        };
+        table
+            .get(port.topic.as_str())
+            .map(|n| n.0.as_slice())
+            .unwrap_or(&[])
+    }
+
+    /// Every key of `inputs` or `outputs` must be a port of the kind.
+    fn check_port_keys(&self, direction: Direction) -> Result<(), LaunchError> {
+        let table = match direction {
+            Direction::Input => &self.inputs,
+            Direction::Output => &self.outputs,
+        };
+        for key in table.keys() {
+            let known = TopicKind::parse(key)
+                .and_then(|topic| self.kind.port(direction, topic))
+                .is_some();
+            if !known {
+                let ports: Vec<&str> = self
+                    .kind
+                    .ports()
+                    .iter()
+                    .filter(|p| p.direction == direction)
+                    .map(|p| p.topic.as_str())
+                    .collect();
+                let list = if ports.is_empty() {
+                    "none".to_owned()
+                } else {
+                    ports.join(", ")
+                };
+                return Err(self.error(format!(
+                    "{}.{key}: a {} node {} no {key} stream (its {}: {list})",
+                    section(direction),
+                    self.kind,
+                    verb(direction),
+                    section(direction)
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Ports that share one option (`--arm` for the guard's joints and
+    /// verdicts) must name the same stream.
+    fn check_shared_flags(&self, wires: &[Wire<'_>]) -> Result<(), LaunchError> {
+        for (i, a) in wires.iter().enumerate() {
+            for b in &wires[i + 1..] {
+                let shared = a.port.flag == b.port.flag && a.port.style == FlagStyle::Name;
+                if shared && !std::ptr::eq(a.port, b.port) && a.stream.name != b.stream.name {
+                    return Err(self.error(format!(
+                        "{}.{} ({}) and {}.{} ({}) are both --{} and must name the same stream",
+                        section(a.port.direction),
+                        a.port.topic,
+                        a.stream.name,
+                        section(b.port.direction),
+                        b.port.topic,
+                        b.stream.name,
+                        a.port.flag
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The options that name the node's streams, e.g. `--input=spheres`.
+    /// Call after the file was validated.
+    pub fn port_args(&self) -> Result<Vec<String>, LaunchError> {
+        let wires = self.wires()?;
+        let mut args = Vec::new();
+        let mut key_lists: BTreeMap<&str, Vec<String>> = BTreeMap::new();
+        for wire in &wires {
+            match wire.port.style {
+                FlagStyle::Name => {
+                    let arg = format!("--{}={}", wire.port.flag, wire.stream.name);
+                    if !args.contains(&arg) {
+                        args.push(arg);
+                    }
+                }
+                FlagStyle::KeyList => key_lists
+                    .entry(wire.port.flag)
+                    .or_default()
+                    .push(wire.stream.to_string()),
+            }
+        }
+        for (flag, keys) in key_lists {
+            args.push(format!("--{flag}={}", keys.join(",")));
+        }
+        Ok(args)
+    }
+
+    /// The options the ports set, which `settings` may not set again.
+    pub fn port_flags(&self) -> impl Iterator<Item = &'static str> {
+        self.kind.ports().iter().map(|p| p.flag)
+    }
+}
+
+fn section(direction: Direction) -> &'static str {
+    match direction {
+        Direction::Input => "inputs",
+        Direction::Output => "outputs",
+    }
+}
+
+fn verb(direction: Direction) -> &'static str {
+    match direction {
+        Direction::Input => "reads",
+        Direction::Output => "writes",
+    }
+}
+
+/// Who feeds an input.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Source<'a> {
+    Node(&'a NodeSpec),
+    External,
+}
+
+/// One edge of the graph: a stream from its source into a node's input.
+#[derive(Debug, Clone)]
+pub struct Edge<'a> {
+    pub from: Source<'a>,
+    pub to: &'a NodeSpec,
+    pub stream: Stream,
+}
+
+impl LaunchFile {
+    /// The streams from outside the file.
+    pub fn external_streams(&self) -> Result<Vec<Stream>, LaunchError> {
+        self.external
+            .iter()
+            .map(|text| {
+                Stream::parse(text).map_err(|reason| LaunchError::Invalid {
+                    field: "external".into(),
+                    reason,
+                })
+            })
+            .collect()
+    }
+
+    /// Every input with its source, in the file's order of nodes.
+    pub fn edges(&self) -> Result<Vec<Edge<'_>>, LaunchError> {
+        let external = self.external_streams()?;
+        let mut producers: BTreeMap<Stream, &NodeSpec> = BTreeMap::new();
+        for node in &self.nodes {
+            for wire in node.wires()? {
+                if wire.port.direction != Direction::Output {
+                    continue;
+                }
+                if let Some(other) = producers.insert(wire.stream.clone(), node) {
+                    return Err(node.error(format!(
+                        "{} is also written by node {:?}: one producer per stream",
+                        wire.stream, other.name
+                    )));
+                }
+                if external.contains(&wire.stream) {
+                    return Err(node.error(format!(
+                        "{} is written here and listed in external",
+                        wire.stream
+                    )));
+                }
+            }
+        }
+        let mut edges = Vec::new();
+        for node in &self.nodes {
+            for wire in node.wires()? {
+                if wire.port.direction != Direction::Input {
+                    continue;
+                }
+                let from = match producers.get(&wire.stream) {
+                    Some(producer) => Source::Node(producer),
+                    None if external.contains(&wire.stream) => Source::External,
+                    None => {
+                        return Err(node.error(format!(
+                            "input {} has no producer: no node of this file writes it and \
+                             `external` does not list it",
+                            wire.stream
+                        )))
+                    }
+                };
+                edges.push(Edge {
+                    from,
+                    to: node,
+                    stream: wire.stream,
+                });
+            }
+        }
+        Ok(edges)
+    }
+}
+
+/// The graph's checks: ports, shared options, one producer per stream, a
+/// producer for every input.
+pub fn check_graph(file: &LaunchFile) -> Result<(), LaunchError> {
+    for node in &file.nodes {
+        node.wires()?;
+    }
+    file.edges().map(|_| ())
+}
