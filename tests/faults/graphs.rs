@@ -20,19 +20,28 @@ pub fn write_scene(dir: &std::path::Path) {
 
 /// A `[[node]]` table of `kind` with its ports (TOML lines such as
 /// `inputs = { cloud = "s" }`) and its settings given as options
-/// (`["--grid", "10x10"]` is `grid = "10x10"`; an option without a value is a
-/// switch): restarted on failure after 0.5 s (doubling after each quick
-/// failure), its status every 0.2 s.
+/// (`["--grid", "10x10"]` is `grid = "10x10"`, a repeated option an array,
+/// an option without a value a switch): restarted on failure after 0.5 s
+/// (doubling after each quick failure), its status every 0.2 s.
 pub fn node(name: &str, kind: &str, ports: &str, options: &[&str]) -> String {
-    let mut settings = vec!["status_period = 0.2".to_string()];
+    let mut values: Vec<(String, Vec<String>)> = Vec::new();
     let mut rest = options.iter().peekable();
     while let Some(option) = rest.next() {
         let key = option.trim_start_matches("--").replace('-', "_");
-        match rest.next_if(|v| !v.starts_with("--")) {
-            Some(value) => settings.push(format!("{key} = {value:?}")),
-            None => settings.push(format!("{key} = true")),
+        let value = match rest.next_if(|v| !v.starts_with("--")) {
+            Some(value) => format!("{value:?}"),
+            None => "true".to_string(),
+        };
+        match values.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, list)) => list.push(value),
+            None => values.push((key, vec![value])),
         }
     }
+    let mut settings = vec!["status_period = 0.2".to_string()];
+    settings.extend(values.into_iter().map(|(key, list)| match list.len() {
+        1 => format!("{key} = {}", list[0]),
+        _ => format!("{key} = [{}]", list.join(", ")),
+    }));
     format!(
         "[[node]]\nname = \"{name}\"\nkind = \"{kind}\"\n{ports}\nrestart = \"on-failure\"\nbackoff_ms = 500\n[node.settings]\n{}\n",
         settings.join("\n")

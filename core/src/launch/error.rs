@@ -8,8 +8,12 @@ pub enum LaunchError {
     Syntax(String),
     #[error("launch file declares no node")]
     NoNodes,
-    #[error("two nodes are named {0:?}; node names must be unique")]
-    DuplicateNode(String),
+    #[error("lines {first} and {again}: two nodes are named {name:?}; node names must be unique")]
+    DuplicateNode {
+        name: String,
+        first: usize,
+        again: usize,
+    },
     #[error("line {line}: node {node:?}: {reason}")]
     Node {
         node: String,

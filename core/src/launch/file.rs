@@ -244,10 +244,14 @@ impl LaunchFile {
         if self.nodes.is_empty() {
             return Err(LaunchError::NoNodes);
         }
-        let mut seen = std::collections::BTreeSet::new();
+        let mut seen = std::collections::BTreeMap::new();
         for node in &self.nodes {
-            if !seen.insert(node.name.as_str()) {
-                return Err(LaunchError::DuplicateNode(node.name.clone()));
+            if let Some(first) = seen.insert(node.name.as_str(), node.line) {
+                return Err(LaunchError::DuplicateNode {
+                    name: node.name.clone(),
+                    first,
+                    again: node.line,
+                });
             }
             check_node(node)?;
         }
@@ -286,32 +290,33 @@ fn check_node(node: &NodeSpec) -> Result<(), LaunchError> {
         )));
     }
     for key in node.settings.keys() {
-        let flag = format!("--{}", key.replace('_', "-"));
-        if LAUNCHER_FLAGS.contains(&flag.as_str()) {
-            return Err(fail(format!(
-                "settings.{key}: {flag} is set by the launcher, not in settings"
-            )));
-        }
-        if let Some(port) = node
-            .kind
-            .ports()
-            .iter()
-            .find(|p| flag == format!("--{}", p.flag))
-        {
-            let section = match port.direction {
-                super::kind::Direction::Input => "inputs",
-                super::kind::Direction::Output => "outputs",
-            };
-            return Err(fail(format!(
-                "settings.{key}: {flag} is wired by {section}.{}, not in settings",
-                port.topic
-            )));
+        if let Some(reason) = node.reserved_setting(key) {
+            return Err(fail(format!("settings.{key}: {reason}")));
         }
     }
     Ok(())
 }
 
 impl NodeSpec {
+    /// Why `key` may not be a setting of this node: the launcher or one of
+    /// the node's ports sets that option.
+    pub fn reserved_setting(&self, key: &str) -> Option<String> {
+        let flag = format!("--{}", key.replace('_', "-"));
+        if LAUNCHER_FLAGS.contains(&flag.as_str()) {
+            return Some(format!("{flag} is set by the launcher, not in settings"));
+        }
+        let port = self
+            .kind
+            .ports()
+            .iter()
+            .find(|p| flag == format!("--{}", p.flag))?;
+        Some(format!(
+            "{flag} is wired by {}.{}, not in settings",
+            port.direction.section(),
+            port.topic
+        ))
+    }
+
     /// An error about this node, naming it and its line.
     pub fn error(&self, reason: String) -> LaunchError {
         LaunchError::Node {
@@ -526,6 +531,9 @@ env = { RUST_LOG = "debug" }
                     Direction::Output => outputs.push(entry),
                 }
             }
+            if kind == NodeKind::Replay {
+                outputs.push("cloud=\"r\"".into());
+            }
             let text = format!(
                 "external=[{}]\n{}",
                 external.join(","),
@@ -542,6 +550,50 @@ env = { RUST_LOG = "debug" }
                 panic!("{kind}: {e}\n{text}");
             }
         }
+    }
+
+    #[test]
+    fn self_feeding_repeated_names_and_duplicate_nodes_are_refused() {
+        let blend = |extra: &str| {
+            one(
+                "blend",
+                &format!("inputs={{blend=\"b\",cloud=\"p\"}}\noutputs={{cloud=\"p\"}}{extra}"),
+            )
+        };
+        let err = LaunchFile::from_toml_str(&format!("external=[\"blend/b\"]\n{}", blend("")))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("reads cloud/p and writes it too"), "{err}");
+        let guard = "inputs={surrogate=[\"s\",\"s\"],joints=\"a\"}\noutputs={collision=\"a\"}";
+        let text = format!(
+            "external=[\"surrogate/s\",\"joints/a\"]\n{}",
+            one("guard", guard)
+        );
+        let err = LaunchFile::from_toml_str(&text).unwrap_err().to_string();
+        assert!(err.contains("inputs.surrogate names \"s\" twice"), "{err}");
+        let twice = format!("{FED}{}\n{}", one("fit", FIT_PORTS), one("fit", FIT_PORTS));
+        let err = LaunchFile::from_toml_str(&twice).unwrap_err().to_string();
+        assert!(
+            err.contains("lines 2 and 9: two nodes are named \"x\""),
+            "{err}"
+        );
+    }
+
+    /// Blend commands may come from several senders: viewers, a command
+    /// line tool outside the file.
+    #[test]
+    fn blend_commands_may_have_several_producers() {
+        let viewer = |name: &str| {
+            one("dashboard", "outputs={blend=\"b\"}")
+                .replace("name=\"x\"", &format!("name=\"{name}\""))
+        };
+        let blend = one("blend", "inputs={blend=\"b\"}\noutputs={cloud=\"o\"}");
+        let text = format!(
+            "external=[\"blend/b\"]\n{}{}{blend}",
+            viewer("d1"),
+            viewer("d2")
+        );
+        assert!(LaunchFile::from_toml_str(&text).is_ok());
     }
 
     #[test]

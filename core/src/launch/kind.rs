@@ -31,6 +31,23 @@ pub enum Direction {
     Output,
 }
 
+impl Direction {
+    /// The launch file's table for this direction.
+    pub fn section(self) -> &'static str {
+        match self {
+            Self::Input => "inputs",
+            Self::Output => "outputs",
+        }
+    }
+
+    pub fn verb(self) -> &'static str {
+        match self {
+            Self::Input => "reads",
+            Self::Output => "writes",
+        }
+    }
+}
+
 /// How a port's topic names reach the node's command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FlagStyle {
@@ -56,6 +73,9 @@ pub struct Port {
     pub many: bool,
     /// The launch file must name it.
     pub required: bool,
+    /// The node reads or writes the port only when this setting is given
+    /// (a mount's joint): the file names both or neither.
+    pub with_setting: Option<&'static str>,
 }
 
 const fn port(topic: TopicKind, direction: Direction, flag: &'static str) -> Port {
@@ -66,6 +86,7 @@ const fn port(topic: TopicKind, direction: Direction, flag: &'static str) -> Por
         style: FlagStyle::Name,
         many: false,
         required: true,
+        with_setting: None,
     }
 }
 
@@ -88,6 +109,7 @@ const fn replayed(topic: TopicKind) -> Port {
         style: FlagStyle::KeyList,
         many: true,
         required: false,
+        with_setting: None,
     }
 }
 
@@ -107,7 +129,10 @@ const GUARD: &[Port] = &[
 const ARM: &[Port] = &[port(Collision, Input, "arm"), port(Joints, Output, "arm")];
 const SERIAL: &[Port] = &[
     port(Cloud, Output, "stream"),
-    optional(port(Joints, Input, "joints")),
+    Port {
+        with_setting: Some("mount_joint"),
+        ..optional(port(Joints, Input, "joints"))
+    },
 ];
 const CAN: &[Port] = &[port(Cloud, Output, "stream")];
 const BLEND: &[Port] = &[
@@ -182,8 +207,9 @@ impl NodeKind {
     }
 
     /// Kinds that subscribe to every topic of the namespace (viewers and the
-    /// recorder): they need no producer and feed nothing back but what their
-    /// ports say.
+    /// recorder): they need no producer. Viewers also send blend commands to
+    /// the blend node they find when their `blend` output is not named, which
+    /// is why blend commands may have several producers.
     pub fn observes_everything(self) -> bool {
         matches!(self, Self::Dashboard | Self::Foxglove | Self::Record)
     }

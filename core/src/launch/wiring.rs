@@ -3,7 +3,7 @@
 //! options that carry the streams' names to each node.
 
 use super::error::LaunchError;
-use super::file::{LaunchFile, NodeSpec};
+use super::file::{LaunchFile, NodeSpec, StreamNames};
 use super::kind::{Direction, FlagStyle, Port};
 use crate::message::{check_name, TopicKind};
 use std::collections::BTreeMap;
@@ -57,31 +57,8 @@ impl NodeSpec {
         self.check_port_keys(Direction::Output)?;
         let mut wires = Vec::new();
         for port in self.kind.ports() {
-            let names = self.names_of(port);
-            if names.is_empty() && port.required {
-                return Err(self.error(format!(
-                    "{}.{} is required: the {} stream it {} (option --{})",
-                    section(port.direction),
-                    port.topic,
-                    port.topic,
-                    verb(port.direction),
-                    port.flag
-                )));
-            }
-            if names.len() > 1 && !port.many {
-                return Err(self.error(format!(
-                    "{}.{} names {} streams; a {} node {} one",
-                    section(port.direction),
-                    port.topic,
-                    names.len(),
-                    self.kind,
-                    verb(port.direction)
-                )));
-            }
-            for name in names {
-                check_name("stream", name).map_err(|e| {
-                    self.error(format!("{}.{}: {e}", section(port.direction), port.topic))
-                })?;
+            self.check_port_names(port)?;
+            for name in self.names_of(port) {
                 wires.push(Wire {
                     port,
                     stream: Stream {
@@ -93,27 +70,97 @@ impl NodeSpec {
             }
         }
         self.check_shared_flags(&wires)?;
+        self.check_not_self_fed(&wires)?;
+        let key_list = self
+            .kind
+            .ports()
+            .iter()
+            .any(|p| p.style == FlagStyle::KeyList);
+        if key_list && !wires.iter().any(|w| w.port.style == FlagStyle::KeyList) {
+            return Err(self.error(format!(
+                "a {} node names the streams it publishes in outputs \
+                 (e.g. outputs = {{ cloud = \"spheres\" }})",
+                self.kind
+            )));
+        }
         Ok(wires)
     }
 
+    /// The names the file gives one port: present when required (or when
+    /// the setting it goes with is given), one unless it takes several, each
+    /// a valid stream name, none twice.
+    fn check_port_names(&self, port: &Port) -> Result<(), LaunchError> {
+        let names = self.names_of(port);
+        let at = format!("{}.{}", port.direction.section(), port.topic);
+        if names.is_empty() && port.required {
+            return Err(self.error(format!(
+                "{at} is required: the {} stream it {} (option --{})",
+                port.topic,
+                port.direction.verb(),
+                port.flag
+            )));
+        }
+        if let Some(setting) = port.with_setting {
+            let set = self.settings.contains_key(setting)
+                || self.settings.contains_key(&setting.replace('_', "-"));
+            if set == names.is_empty() {
+                return Err(self.error(format!(
+                    "{at} and settings.{setting} go together: name both or neither"
+                )));
+            }
+        }
+        if names.len() > 1 && !port.many {
+            return Err(self.error(format!(
+                "{at} names {} streams; a {} node {} one",
+                names.len(),
+                self.kind,
+                port.direction.verb()
+            )));
+        }
+        let mut seen = std::collections::BTreeSet::new();
+        for name in names {
+            check_name("stream", name).map_err(|e| self.error(format!("{at}: {e}")))?;
+            if !seen.insert(name) {
+                return Err(self.error(format!("{at} names {name:?} twice")));
+            }
+        }
+        Ok(())
+    }
+
+    /// A node never feeds itself (a blend whose parent is its own output
+    /// would wait for ever).
+    fn check_not_self_fed(&self, wires: &[Wire<'_>]) -> Result<(), LaunchError> {
+        let outputs: Vec<&Stream> = wires
+            .iter()
+            .filter(|w| w.port.direction == Direction::Output)
+            .map(|w| &w.stream)
+            .collect();
+        match wires
+            .iter()
+            .find(|w| w.port.direction == Direction::Input && outputs.contains(&&w.stream))
+        {
+            Some(w) => Err(self.error(format!("reads {} and writes it too", w.stream))),
+            None => Ok(()),
+        }
+    }
+
     fn names_of(&self, port: &Port) -> &[String] {
-        let table = match port.direction {
-            Direction::Input => &self.inputs,
-            Direction::Output => &self.outputs,
-        };
-        table
+        self.table(port.direction)
             .get(port.topic.as_str())
             .map(|n| n.0.as_slice())
             .unwrap_or(&[])
     }
 
-    /// Every key of `inputs` or `outputs` must be a port of the kind.
-    fn check_port_keys(&self, direction: Direction) -> Result<(), LaunchError> {
-        let table = match direction {
+    fn table(&self, direction: Direction) -> &BTreeMap<String, StreamNames> {
+        match direction {
             Direction::Input => &self.inputs,
             Direction::Output => &self.outputs,
-        };
-        for key in table.keys() {
+        }
+    }
+
+    /// Every key of `inputs` or `outputs` must be a port of the kind.
+    fn check_port_keys(&self, direction: Direction) -> Result<(), LaunchError> {
+        for key in self.table(direction).keys() {
             let known = TopicKind::parse(key)
                 .and_then(|topic| self.kind.port(direction, topic))
                 .is_some();
@@ -132,10 +179,10 @@ impl NodeSpec {
                 };
                 return Err(self.error(format!(
                     "{}.{key}: a {} node {} no {key} stream (its {}: {list})",
-                    section(direction),
+                    direction.section(),
                     self.kind,
-                    verb(direction),
-                    section(direction)
+                    direction.verb(),
+                    direction.section()
                 )));
             }
         }
@@ -151,10 +198,10 @@ impl NodeSpec {
                 if shared && !std::ptr::eq(a.port, b.port) && a.stream.name != b.stream.name {
                     return Err(self.error(format!(
                         "{}.{} ({}) and {}.{} ({}) are both --{} and must name the same stream",
-                        section(a.port.direction),
+                        a.port.direction.section(),
                         a.port.topic,
                         a.stream.name,
-                        section(b.port.direction),
+                        b.port.direction.section(),
                         b.port.topic,
                         b.stream.name,
                         a.port.flag
@@ -197,20 +244,6 @@ impl NodeSpec {
     }
 }
 
-fn section(direction: Direction) -> &'static str {
-    match direction {
-        Direction::Input => "inputs",
-        Direction::Output => "outputs",
-    }
-}
-
-fn verb(direction: Direction) -> &'static str {
-    match direction {
-        Direction::Input => "reads",
-        Direction::Output => "writes",
-    }
-}
-
 /// Who feeds an input.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Source<'a> {
@@ -247,6 +280,12 @@ impl LaunchFile {
         for node in &self.nodes {
             for wire in node.wires()? {
                 if wire.port.direction != Direction::Output {
+                    continue;
+                }
+                // Commands may come from several senders (pages, panels,
+                // `shroud blend-cmd`); every other stream has one producer.
+                if wire.port.topic == TopicKind::Blend {
+                    producers.entry(wire.stream.clone()).or_insert(node);
                     continue;
                 }
                 if let Some(other) = producers.insert(wire.stream.clone(), node) {

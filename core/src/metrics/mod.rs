@@ -3,6 +3,7 @@
 //! takes, through a counting allocator that benchmarks install.
 
 mod allocation;
+pub mod names;
 mod node_health;
 mod percentiles;
 mod rate;

@@ -1,6 +1,7 @@
 //! The launcher's live one-line summary of a running graph: rates, latency,
 //! certificate and clearance, folded from the messages the graph publishes.
 
+use super::names;
 use crate::message::{CollisionMessage, GuardVerdict, NodeStatusMessage, SurrogateMessage};
 use std::collections::BTreeMap;
 
@@ -53,7 +54,7 @@ impl GraphSummary {
     pub fn line(&self, elapsed_s: f64) -> String {
         let mut parts = vec![format!("t={elapsed_s:6.1}s")];
         for (name, s) in &self.statuses {
-            let mut part = format!("{name}: {} out", s.counter("published"));
+            let mut part = format!("{name}: {} out", s.counter(names::PUBLISHED.name));
             if let Some(p50) = s.gauge("fit_p50_ms") {
                 part += &format!(", fit p50 {p50:.2} ms");
             }
@@ -63,7 +64,8 @@ impl GraphSummary {
             if let Some(ms) = s.gauge("blend_ms") {
                 part += &format!(", last blend {ms:.0} ms");
             }
-            let drops = s.counter("dropped_backlog") + s.counter("dropped_malformed");
+            let drops =
+                s.counter(names::DROPPED_BACKLOG.name) + s.counter(names::DROPPED_MALFORMED.name);
             if drops > 0 {
                 part += &format!(", {drops} dropped");
             }
@@ -121,7 +123,7 @@ fn arm_state(s: &NodeStatusMessage) -> String {
     format!(
         ", {state}, halted {share:.0}% of {:.0} s ({} halts{}{})",
         s.uptime_s,
-        s.counter("halts"),
+        s.counter(names::HALTS.name),
         if causes.is_empty() { "" } else { ": " },
         causes.join(", ")
     )

@@ -4,7 +4,7 @@
 
 use crate::node::NodeCommand;
 use clap::{CommandFactory, Parser};
-use shroud_core::launch::{LaunchError, LaunchFile, NodeSpec, LAUNCHER_FLAGS};
+use shroud_core::launch::{LaunchError, LaunchFile, NodeSpec};
 
 /// A node of the file with the options it is started with (after the
 /// launcher's own).
@@ -37,17 +37,23 @@ fn plan_node(spec: &NodeSpec) -> Result<PlannedNode, LaunchError> {
     let mut line = vec!["node".to_owned(), spec.kind.as_str().to_owned()];
     line.extend(["--name".to_owned(), spec.name.clone()]);
     line.extend(args.iter().cloned());
-    NodeLine::try_parse_from(&line).map_err(|e| spec.error(first_line(&e.to_string())))?;
+    NodeLine::try_parse_from(&line).map_err(|e| spec.error(one_line(&e.to_string())))?;
     Ok(PlannedNode {
         spec: spec.clone(),
         args,
     })
 }
 
-/// clap's message without its usage and help footer.
-fn first_line(message: &str) -> String {
-    let line = message.lines().next().unwrap_or(message);
-    line.strip_prefix("error: ").unwrap_or(line).to_owned()
+/// clap's message on one line, without its usage and help footer (a missing
+/// option is named on the lines after the first).
+fn one_line(message: &str) -> String {
+    let body = message
+        .split("\n\nUsage:")
+        .next()
+        .and_then(|m| m.split("\n\nFor more information").next())
+        .unwrap_or(message);
+    let text = body.split_whitespace().collect::<Vec<_>>().join(" ");
+    text.strip_prefix("error: ").unwrap_or(&text).to_owned()
 }
 
 /// `settings` as options: `key = value` is `--key=value`, an array repeats
@@ -86,13 +92,16 @@ fn setting_args(command: &clap::Command, spec: &NodeSpec) -> Result<Vec<String>,
             options.extend(values.into_iter().map(|v| format!("--{long}={v}")));
         }
     }
-    options.extend(positional);
+    // After `--`, a value that starts with `-` is still a positional value.
+    if !positional.is_empty() {
+        options.push("--".to_owned());
+        options.extend(positional);
+    }
     Ok(options)
 }
 
 /// The options a launch file may set for this kind.
 fn settings_of(command: &clap::Command, spec: &NodeSpec) -> Vec<String> {
-    let ports: Vec<&str> = spec.port_flags().collect();
     command
         .get_arguments()
         .filter_map(|a| match a.get_long() {
@@ -100,10 +109,7 @@ fn settings_of(command: &clap::Command, spec: &NodeSpec) -> Vec<String> {
             None if a.is_positional() => Some(a.get_id().as_str()),
             None => None,
         })
-        .filter(|name| {
-            let flag = format!("--{name}");
-            *name != "help" && !LAUNCHER_FLAGS.contains(&flag.as_str()) && !ports.contains(name)
-        })
+        .filter(|name| *name != "help" && spec.reserved_setting(name).is_none())
         .map(|name| name.replace('-', "_"))
         .collect()
 }
@@ -173,7 +179,10 @@ mod tests {
         );
         let text = format!("external = [\"blend/b\"]\n{text}");
         let nodes = planned(&text).unwrap();
-        assert_eq!(nodes[0].args, vec!["--topics=cloud/c", "--loop", "a.mcap"]);
+        assert_eq!(
+            nodes[0].args,
+            vec!["--topics=cloud/c", "--loop", "--", "a.mcap"]
+        );
         assert_eq!(
             nodes[1].args,
             vec![
@@ -213,6 +222,32 @@ mod tests {
         assert!(planned(&text)
             .unwrap_err()
             .contains("settings.ignore_guard is a switch"));
+    }
+
+    #[test]
+    fn a_missing_option_is_named_and_a_mount_joint_needs_its_joints() {
+        let guard = "[[node]]\nname = \"g\"\nkind = \"guard\"\n\
+                     inputs = { surrogate = \"s\", joints = \"a\" }\noutputs = { collision = \"a\" }\n";
+        let text = format!("external = [\"surrogate/s\", \"joints/a\"]\n{guard}");
+        let err = planned(&text).unwrap_err();
+        let needle = "line 2: node \"g\": the following required arguments were not provided: \
+                      --arm-file <ARM_FILE>";
+        assert!(err.contains(needle), "{err}");
+        let serial = "[[node]]\nname = \"s\"\nkind = \"serial\"\noutputs = { cloud = \"c\" }\n\
+                      settings = { port = \"/dev/null\", device = \"tfmini\", mount_joint = \"tilt\" }\n";
+        let err = planned(serial).unwrap_err();
+        assert!(
+            err.contains("inputs.joints and settings.mount_joint go together"),
+            "{err}"
+        );
+        let fed = serial.replace("outputs =", "inputs = { joints = \"m\" }\noutputs =");
+        let text = format!("external = [\"joints/m\"]\n{fed}");
+        let nodes = planned(&text).unwrap();
+        assert!(
+            nodes[0].args.contains(&"--joints=m".to_string()),
+            "{:?}",
+            nodes[0].args
+        );
     }
 
     /// Every port's option exists on its node, so the kind table cannot

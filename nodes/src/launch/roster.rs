@@ -118,6 +118,9 @@ mod tests {
         assert_eq!(msg.counter("restarts.guard"), 0);
         assert_eq!(msg.labels["pid.fit"], "11");
         assert_eq!(msg.labels["state.fit"], "running");
-        assert_eq!(msg.counter("dropped_malformed"), 1);
+        assert_eq!(
+            msg.counter(shroud_core::metrics::names::DROPPED_MALFORMED.name),
+            1
+        );
     }
 }

@@ -11,6 +11,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use shroud_core::guard::{ArmFile, Deadman, Motion, ResumeAfter, Trajectory, VerdictUse};
 use shroud_core::message::{CollisionMessage, GuardVerdict, JointStateMessage, TopicKind};
+use shroud_core::metrics::names::{self as metric, Counter};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
@@ -152,10 +153,10 @@ fn serve(
             .deadman
             .sent(sequence, stamp_ns, monotonic_ns());
         match publisher.put(msg.to_bytes()?).wait() {
-            Ok(()) => ctx.metrics.add("published", 1),
+            Ok(()) => ctx.metrics.add(metric::PUBLISHED, 1),
             Err(e) => tracing::warn!("publish joints: {e}"),
         }
-        ctx.metrics.set("trajectory_s", motion_time);
+        ctx.metrics.set(metric::TRAJECTORY_S, motion_time);
         sequence += 1;
         std::thread::sleep(period.saturating_sub(now.elapsed()));
     }
@@ -168,9 +169,9 @@ fn on_verdict(ctx: &NodeContext, verdicts: &Mutex<Verdicts>, msg: &CollisionMess
         .deadman
         .verdict(msg.joints_sequence, msg.joints_stamp_ns, msg.verdict)
     {
-        VerdictUse::Applied => ctx.metrics.add("verdicts", 1),
-        VerdictUse::Unknown => ctx.metrics.add("verdicts_unknown", 1),
-        VerdictUse::Superseded => ctx.metrics.add("verdicts_superseded", 1),
+        VerdictUse::Applied => ctx.metrics.add(metric::VERDICTS, 1),
+        VerdictUse::Unknown => ctx.metrics.add(metric::VERDICTS_UNKNOWN, 1),
+        VerdictUse::Superseded => ctx.metrics.add(metric::VERDICTS_SUPERSEDED, 1),
     }
     if msg.stop {
         v.last_reason = format!("{}: {}", msg.verdict.name(), msg.reason);
@@ -192,7 +193,7 @@ impl HaltLog {
     fn update(&mut self, ctx: &NodeContext, motion: Motion, reason: &str, now: Instant) {
         match (motion, self.since) {
             (Motion::Halt(v), None) => {
-                ctx.metrics.add("halts", 1);
+                ctx.metrics.add(metric::HALTS, 1);
                 self.counted.clear();
                 self.count_cause(ctx, v);
                 tracing::warn!("halted: {}", Self::why(v, reason));
@@ -218,15 +219,15 @@ impl HaltLog {
             .since
             .map_or(0.0, |(start, _)| (now - start).as_secs_f64());
         let m = &ctx.metrics;
-        m.set("halted", if self.since.is_some() { 1.0 } else { 0.0 });
-        m.set("halted_s", self.halted_s + current);
-        m.set("halt_current_s", current);
+        m.set(metric::HALTED, if self.since.is_some() { 1.0 } else { 0.0 });
+        m.set(metric::HALTED_S, self.halted_s + current);
+        m.set(metric::HALT_CURRENT_S, current);
     }
 
     fn count_cause(&mut self, ctx: &NodeContext, v: GuardVerdict) {
         if !self.counted.contains(&v) {
             self.counted.push(v);
-            ctx.metrics.add(v.halt_counter(), 1);
+            ctx.metrics.add(Counter::of(v.halt_counter()), 1);
         }
     }
 

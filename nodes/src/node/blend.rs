@@ -17,6 +17,7 @@ use shroud_core::blend::{
     supersede_indices, BlendCommand, BlendParams, BlendSession, Child, PolygonOfInterest, Prepared,
 };
 use shroud_core::message::{BlendCommandMessage, CloudMessage, CloudView, SensorPose, TopicKind};
+use shroud_core::metrics::names as metric;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -113,7 +114,7 @@ fn serve(ctx: Arc<NodeContext>, args: BlendNodeArgs, params: BlendParams) -> Res
     let republish = (args.republish > 0.0).then(|| Duration::from_secs_f64(args.republish));
     while !ctx.stopping() {
         ctx.metrics
-            .set_counter("dropped_backlog", mailbox.dropped());
+            .set_counter(metric::DROPPED_BACKLOG, mailbox.dropped());
         let Some(first) = mailbox.pop(Duration::from_millis(100)) else {
             if republish.is_some_and(|period| last_publish.elapsed() >= period) {
                 out.publish(&session);
@@ -144,7 +145,7 @@ fn apply_batch(
     let decoded: Vec<(BlendCommand, Option<String>)> = batch
         .iter()
         .filter_map(|(key, payload)| {
-            ctx.metrics.add("received", 1);
+            ctx.metrics.add(metric::RECEIVED, 1);
             let decoded = BlendCommandMessage::from_bytes(&payload.to_bytes())
                 .and_then(|m| Ok((m.command()?, m.part)));
             match decoded {
@@ -159,12 +160,12 @@ fn apply_batch(
     let commands: Vec<BlendCommand> = decoded.iter().map(|(c, _)| *c).collect();
     let todo = supersede_indices(&commands);
     ctx.metrics
-        .add("superseded", (decoded.len() - todo.len()) as u64);
+        .add(metric::SUPERSEDED, (decoded.len() - todo.len()) as u64);
     let mut changed = false;
     for (command, part) in todo.into_iter().map(|i| &decoded[i]) {
         if let Some(name) = part {
             if let Err(e) = palette.hold(session, name) {
-                ctx.metrics.add("blend_errors", 1);
+                ctx.metrics.add(metric::BLEND_ERRORS, 1);
                 tracing::warn!("drop refused: {e:#}");
                 continue;
             }
@@ -173,18 +174,18 @@ fn apply_batch(
         match session.apply(command) {
             Ok(report) => {
                 changed = true;
-                ctx.metrics.add("applied", 1);
+                ctx.metrics.add(metric::APPLIED, 1);
                 if let Some(r) = report {
                     ctx.metrics
-                        .set("blend_ms", start.elapsed().as_secs_f64() * 1e3);
-                    ctx.metrics.set("centres", r.greedy.centres as f64);
+                        .set(metric::BLEND_MS, start.elapsed().as_secs_f64() * 1e3);
+                    ctx.metrics.set(metric::CENTRES, r.greedy.centres as f64);
                     ctx.metrics
-                        .set("transition_points", r.kept_transition as f64);
+                        .set(metric::TRANSITION_POINTS, r.kept_transition as f64);
                 }
-                ctx.metrics.set("commits", session.commits() as f64);
+                ctx.metrics.set(metric::COMMITS, session.commits() as f64);
             }
             Err(e) => {
-                ctx.metrics.add("blend_errors", 1);
+                ctx.metrics.add(metric::BLEND_ERRORS, 1);
                 tracing::warn!(?command, "blend command refused: {e}");
             }
         }
@@ -354,13 +355,13 @@ impl Output<'_> {
                     .map_err(|e| anyhow::anyhow!("{e}"))
             });
         match sent {
-            Ok(()) => self.ctx.metrics.add("published", 1),
+            Ok(()) => self.ctx.metrics.add(metric::PUBLISHED, 1),
             Err(e) => {
-                self.ctx.metrics.add("publish_errors", 1);
+                self.ctx.metrics.add(metric::PUBLISH_ERRORS, 1);
                 tracing::warn!("publish the blended cloud: {e}");
             }
         }
-        self.ctx.metrics.set("points", points.len() as f64);
+        self.ctx.metrics.set(metric::POINTS, points.len() as f64);
         self.sequence += 1;
     }
 }
@@ -418,7 +419,7 @@ fn parent(
                 return Ok(Some((parent, age)));
             }
             Err(e) => {
-                ctx.metrics.add("parent_refused", 1);
+                ctx.metrics.add(metric::PARENT_REFUSED, 1);
                 tracing::warn!("parent cloud from {key} refused: {e}");
             }
         }

@@ -16,6 +16,7 @@ use anyhow::Result;
 use clap::Args;
 use shroud_core::ingest::can_device::{CanDeviceDriver, CanDriverOutput, SensorCloud};
 use shroud_core::ingest::device::DeviceState;
+use shroud_core::metrics::names as metric;
 use std::sync::Arc;
 
 #[derive(Debug, Clone, Args)]
@@ -121,7 +122,7 @@ fn publish(ctx: &NodeContext, out: &mut CloudOut<'_>, cloud: &SensorCloud) {
         host_now().monotonic_ns.saturating_sub(first)
     });
     ctx.metrics
-        .set("cloud_points", cloud.scan.points.len() as f64);
+        .set(metric::CLOUD_POINTS, cloud.scan.points.len() as f64);
 }
 
 fn mirror_counters(ctx: &NodeContext, driver: &dyn CanDeviceDriver, bus: &BusStats) {
@@ -130,10 +131,10 @@ fn mirror_counters(ctx: &NodeContext, driver: &dyn CanDeviceDriver, bus: &BusSta
         ctx.metrics.set_named_counter(name, n);
     }
     let m = &ctx.metrics;
-    m.set_counter("opens", bus.opens);
-    m.set_counter("open_failures", bus.open_failures);
-    m.set_counter("disconnects", bus.disconnects);
-    m.set_counter("frames_received", bus.frames_received);
-    m.set_counter("frames_sent", bus.frames_sent);
-    m.set_counter("frames_unsent", bus.frames_unsent);
+    m.set_counter(metric::OPENS, bus.opens);
+    m.set_counter(metric::OPEN_FAILURES, bus.open_failures);
+    m.set_counter(metric::DISCONNECTS, bus.disconnects);
+    m.set_counter(metric::FRAMES_RECEIVED, bus.frames_received);
+    m.set_counter(metric::FRAMES_SENT, bus.frames_sent);
+    m.set_counter(metric::FRAMES_UNSENT, bus.frames_unsent);
 }

@@ -10,14 +10,12 @@ use crate::args::CloudArgs;
 use crate::ingest::{host_now, run_device, DevicePortConfig, PortStats};
 use crate::transport::unix_ns;
 use anyhow::Result;
-use shroud_core::ingest::assembly::{
-    AssembledCloud, CloudAssembler, MountMotion, READINGS_LATE_BEYOND_BOUND,
-    READINGS_LATE_UNBOUNDED,
-};
+use shroud_core::ingest::assembly::{AssembledCloud, CloudAssembler, MountMotion};
 use shroud_core::ingest::device::{
     DeviceDriver, DeviceState, DeviceStats, DriverOutput, RangeScan,
 };
 use shroud_core::message::{check_stamp_skew, JointStateMessage, TopicKind};
+use shroud_core::metrics::names::{self as metric, Counter};
 use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TrySendError};
 use std::sync::Arc;
 use std::time::Duration;
@@ -115,7 +113,7 @@ fn offer(ctx: &NodeContext, tx: &SyncSender<Input>, input: Input) {
     match tx.try_send(input) {
         Ok(()) => {}
         Err(TrySendError::Full(_)) => {
-            ctx.metrics.add("dropped_backlog", 1);
+            ctx.metrics.add(metric::DROPPED_BACKLOG, 1);
             tracing::debug!("assembler busy: dropped a scan or joint sample");
         }
         Err(TrySendError::Disconnected(_)) => {}
@@ -124,15 +122,15 @@ fn offer(ctx: &NodeContext, tx: &SyncSender<Input>, input: Input) {
 
 fn mirror_counters(ctx: &NodeContext, device: &DeviceStats, port: &PortStats) {
     // The device's errors plus the joint states refused (counted apart).
-    let joints = ctx.metrics.counter("joint_samples_malformed");
+    let joints = ctx.metrics.counter(metric::JOINT_SAMPLES_MALFORMED);
     mirror_driver_counters(ctx, device, joints);
     let m = &ctx.metrics;
-    m.set_counter("bytes_read", device.bytes);
-    m.set_counter("opens", port.opens);
-    m.set_counter("open_failures", port.open_failures);
-    m.set_counter("disconnects", port.disconnects);
-    m.set_counter("reconnects", port.reconnects);
-    m.set_counter("line_setting_failures", port.line_setting_failures);
+    m.set_counter(metric::BYTES_READ, device.bytes);
+    m.set_counter(metric::OPENS, port.opens);
+    m.set_counter(metric::OPEN_FAILURES, port.open_failures);
+    m.set_counter(metric::DISCONNECTS, port.disconnects);
+    m.set_counter(metric::RECONNECTS, port.reconnects);
+    m.set_counter(metric::LINE_SETTING_FAILURES, port.line_setting_failures);
 }
 
 /// The assembler's thread: scans and joint samples in, clouds out.
@@ -159,22 +157,25 @@ fn assemble(
             publish(ctx, out, &cloud);
         }
         let s = assembler.stats();
-        ctx.metrics.set_counter("clouds", s.clouds);
-        ctx.metrics.set_counter("invalid_rays", s.invalid_rays);
+        ctx.metrics.set_counter(metric::CLOUDS, s.clouds);
         ctx.metrics
-            .set_counter("mount_angle_missing", s.mount_angle_missing);
+            .set_counter(metric::INVALID_RAYS, s.invalid_rays);
         ctx.metrics
-            .set_counter("joint_samples_refused", s.joint_samples_refused);
+            .set_counter(metric::MOUNT_ANGLE_MISSING, s.mount_angle_missing);
         ctx.metrics
-            .set_counter(READINGS_LATE_UNBOUNDED, s.readings_late_unbounded);
+            .set_counter(metric::JOINT_SAMPLES_REFUSED, s.joint_samples_refused);
         ctx.metrics
-            .set_counter(READINGS_LATE_BEYOND_BOUND, s.readings_late_beyond_bound);
+            .set_counter(metric::READINGS_LATE_UNBOUNDED, s.readings_late_unbounded);
+        ctx.metrics.set_counter(
+            metric::READINGS_LATE_BEYOND_BOUND,
+            s.readings_late_beyond_bound,
+        );
     }
     let unpublished = assembler.pending_points();
     if unpublished > 0 {
         // A window cut short by the stop: not a cloud the window promised.
         ctx.metrics
-            .add("points_unpublished_at_stop", unpublished as u64);
+            .add(metric::POINTS_UNPUBLISHED_AT_STOP, unpublished as u64);
         tracing::info!("{unpublished} points of an unfinished cloud not published at stop");
     }
 }
@@ -187,11 +188,11 @@ fn publish(ctx: &NodeContext, out: &mut CloudOut<'_>, cloud: &AssembledCloud) {
     });
     let since_last = host_now().since(cloud.last_received);
     ctx.metrics
-        .set("last_byte_to_publish_ms", since_last as f64 * 1e-6);
+        .set(metric::LAST_BYTE_TO_PUBLISH_MS, since_last as f64 * 1e-6);
     ctx.metrics
-        .set("cloud_points", cloud.cloud.points.len() as f64);
+        .set(metric::CLOUD_POINTS, cloud.cloud.points.len() as f64);
     ctx.metrics
-        .set("cloud_position_error_m", cloud.position_error_m);
+        .set(metric::CLOUD_POSITION_ERROR_M, cloud.position_error_m);
 }
 
 /// Subscribes to the joint states carrying the mount's angle. Their stamps
@@ -213,26 +214,26 @@ fn subscribe_mount_joint(
         .declare_subscriber(key.clone())
         .callback(move |sample| {
             let bytes = sample.payload().to_bytes();
-            let refuse = |counter: &'static str, why: &dyn std::fmt::Display| {
+            let refuse = |counter: Counter, why: &dyn std::fmt::Display| {
                 node.metrics.add(counter, 1);
                 // Once, then every 1000th: a topic at 200 Hz must not flood the log.
                 let n = node.metrics.counter(counter);
                 if n == 1 || n.is_multiple_of(1000) {
-                    tracing::warn!(key, "{counter} ({n} so far): {why}");
+                    tracing::warn!(key, "{} ({n} so far): {why}", counter.name);
                 }
             };
             let msg = match JointStateMessage::from_bytes(&bytes) {
                 Ok(msg) => msg,
-                Err(e) => return refuse("joint_samples_malformed", &e),
+                Err(e) => return refuse(metric::JOINT_SAMPLES_MALFORMED, &e),
             };
             let Some(i) = msg.names.iter().position(|n| *n == joint) else {
                 return refuse(
-                    "joint_samples_foreign",
+                    metric::JOINT_SAMPLES_FOREIGN,
                     &format!("no joint named {joint:?}"),
                 );
             };
             if let Err(skew) = check_stamp_skew(msg.stamp_ns, unix_ns(), max_skew_ns) {
-                return refuse("clock_skew", &format!("joint state {skew}"));
+                return refuse(metric::CLOCK_SKEW, &format!("joint state {skew}"));
             }
             let angle = msg.positions[i];
             offer(

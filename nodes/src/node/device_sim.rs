@@ -8,6 +8,7 @@ use crate::args::EmulatorArgs;
 use crate::ingest::run_emulator;
 use anyhow::{Context, Result};
 use clap::Args;
+use shroud_core::metrics::names as metric;
 
 #[derive(Debug, Clone, Args)]
 pub struct DeviceSimArgs {
@@ -45,11 +46,11 @@ pub fn run_device_sim(args: DeviceSimArgs) -> Result<()> {
         };
         let mut on_stats = |s: &crate::ingest::LineStats| {
             let m = &ctx.metrics;
-            m.set_counter("bytes_to_host", s.bytes_to_host);
-            m.set_counter("bytes_from_host", s.bytes_from_host);
-            m.set_counter("bytes_dropped", s.bytes_dropped);
-            m.set_counter("bytes_garbled", s.bytes_garbled);
-            m.set_counter("unplugs", s.unplugs);
+            m.set_counter(metric::BYTES_TO_HOST, s.bytes_to_host);
+            m.set_counter(metric::BYTES_FROM_HOST, s.bytes_from_host);
+            m.set_counter(metric::BYTES_DROPPED, s.bytes_dropped);
+            m.set_counter(metric::BYTES_GARBLED, s.bytes_garbled);
+            m.set_counter(metric::UNPLUGS, s.unplugs);
         };
         let stats = run_emulator(&mut make, &line, ctx.stop_flag(), &mut ready, &mut on_stats)
             .context("emulated device")?;

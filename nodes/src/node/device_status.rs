@@ -4,6 +4,7 @@
 
 use super::runtime::NodeContext;
 use shroud_core::ingest::device::{DeviceState, DeviceStats};
+use shroud_core::metrics::names::{self as metric, Counter};
 
 /// Labels that describe the node, not the device on its port.
 const KEPT_LABELS: [&str; 3] = ["device.kind", "device.state", "device.clock"];
@@ -31,7 +32,7 @@ pub(super) fn report_identity(ctx: &NodeContext, pairs: Vec<(String, String)>) {
 /// also counted (`device_unhealthy`) and logged.
 pub(super) fn report_health(ctx: &NodeContext, ok: bool, detail: &str) {
     if !ok {
-        ctx.metrics.add("device_unhealthy", 1);
+        ctx.metrics.add(metric::DEVICE_UNHEALTHY, 1);
         tracing::warn!("device health: {detail}");
     }
     let text = if ok {
@@ -51,12 +52,15 @@ pub(super) fn mirror_driver_counters(
     extra_malformed: u64,
 ) {
     let m = &ctx.metrics;
-    m.set_counter("scans", device.scans);
-    m.set_counter("commands", device.commands);
-    m.set_counter("handshakes", device.handshakes);
-    m.set_counter("dropped_malformed", device.total_errors() + extra_malformed);
+    m.set_counter(metric::SCANS, device.scans);
+    m.set_counter(metric::COMMANDS, device.commands);
+    m.set_counter(metric::HANDSHAKES, device.handshakes);
+    m.set_counter(
+        metric::DROPPED_MALFORMED,
+        device.total_errors() + extra_malformed,
+    );
     let all = device.error_counts().chain(device.invalid_reading_counts());
     for (kind, n) in all.chain(device.note_counts()) {
-        m.set_counter(kind, n);
+        m.set_counter(Counter::of(kind), n);
     }
 }

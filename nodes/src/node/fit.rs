@@ -4,10 +4,11 @@
 
 use super::runtime::{run_node, NodeCommon, NodeContext};
 use crate::args::SurrogateShapeArgs;
-use crate::transport::{sample_published_ns, unix_ns, Mailbox, NO_PUBLISH_STAMP};
+use crate::transport::{sample_published_ns, unix_ns, Mailbox};
 use anyhow::Result;
 use clap::Args;
 use shroud_core::message::{counted_transit, CloudView, MessageError, SurrogateMessage, TopicKind};
+use shroud_core::metrics::names as metric;
 use shroud_core::metrics::{Percentiles, SequenceGaps};
 use shroud_core::surrogate::{FitError, Sides, SurrogateFitter};
 use std::sync::Arc;
@@ -56,14 +57,14 @@ struct Arrival {
 /// `None`, counted and logged, when it cannot be known.
 fn cloud_transit(ctx: &NodeContext, arrival: &Arrival, max_offset_ns: u64) -> Option<u64> {
     let Some(published_ns) = arrival.published_ns else {
-        ctx.metrics.add(NO_PUBLISH_STAMP, 1);
+        ctx.metrics.add(metric::NO_PUBLISH_STAMP, 1);
         tracing::warn!(key = %arrival.key, "cloud without a zenoh timestamp: its transit is unknown");
         return None;
     };
     match counted_transit(published_ns, arrival.received_ns, max_offset_ns) {
         Ok(transit) => Some(transit),
         Err(e) => {
-            ctx.metrics.add("clock_offset", 1);
+            ctx.metrics.add(metric::CLOCK_OFFSET, 1);
             tracing::warn!(key = %arrival.key, "cloud dropped: {e}");
             None
         }
@@ -113,11 +114,11 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
     let max_offset_ns = (args.max_clock_offset * 1e9) as u64;
     while !ctx.stopping() {
         ctx.metrics
-            .set_counter("dropped_backlog", mailbox.dropped());
+            .set_counter(metric::DROPPED_BACKLOG, mailbox.dropped());
         let Some(arrival) = mailbox.pop(Duration::from_millis(100)) else {
             continue;
         };
-        ctx.metrics.add("received", 1);
+        ctx.metrics.add(metric::RECEIVED, 1);
         let decode_start = Instant::now();
         // Shared-memory payloads are one contiguous slice: the view borrows it,
         // and an aligned cloud's floats are fitted where they lie.
@@ -133,7 +134,8 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
         // (`dropped_backlog`) or lost before it; the difference is the loss
         // on the way.
         gaps.observe(&msg.source, msg.sequence);
-        ctx.metrics.set_counter("sequence_gaps", gaps.missing());
+        ctx.metrics
+            .set_counter(metric::SEQUENCE_GAPS, gaps.missing());
         let points = match points_of(&msg, &mut copied) {
             Ok(points) => points,
             Err(e) => {
@@ -151,7 +153,7 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
                 continue;
             }
             Err(e) => {
-                ctx.metrics.add("fit_errors", 1);
+                ctx.metrics.add(metric::FIT_ERRORS, 1);
                 tracing::warn!(sequence = msg.sequence, "cloud not fitted: {e}");
                 continue;
             }
@@ -189,9 +191,9 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
         let publish_start = Instant::now();
         match out.to_bytes() {
             Ok(bytes) => match publisher.put(bytes).timestamp(published).wait() {
-                Ok(()) => ctx.metrics.add("published", 1),
+                Ok(()) => ctx.metrics.add(metric::PUBLISHED, 1),
                 Err(e) => {
-                    ctx.metrics.add("publish_errors", 1);
+                    ctx.metrics.add(metric::PUBLISH_ERRORS, 1);
                     tracing::warn!("publish {output}: {e}");
                 }
             },
@@ -211,17 +213,17 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
         );
         fit_ms.push(fit_ns as f64 / 1e6);
         latency_ms.push(out.pipeline_ns as f64 / 1e6);
-        ctx.metrics.set("points", points.len() as f64);
+        ctx.metrics.set(metric::POINTS, points.len() as f64);
         // Where a frame's time goes besides the fit, for `shroud topic echo`.
-        ctx.metrics.set("transit_ms", transit_ms);
-        ctx.metrics.set("queue_wait_ms", wait_ms);
-        ctx.metrics.set("decode_ms", decode_ms);
-        ctx.metrics.set("publish_ms", publish_ms);
+        ctx.metrics.set(metric::TRANSIT_MS, transit_ms);
+        ctx.metrics.set(metric::QUEUE_WAIT_MS, wait_ms);
+        ctx.metrics.set(metric::DECODE_MS, decode_ms);
+        ctx.metrics.set(metric::PUBLISH_MS, publish_ms);
         if let (Some(f), Some(l)) = (fit_ms.summary(), latency_ms.summary()) {
-            ctx.metrics.set("fit_p50_ms", f.p50);
-            ctx.metrics.set("fit_p99_ms", f.p99);
-            ctx.metrics.set("latency_p50_ms", l.p50);
-            ctx.metrics.set("latency_p99_ms", l.p99);
+            ctx.metrics.set(metric::FIT_P50_MS, f.p50);
+            ctx.metrics.set(metric::FIT_P99_MS, f.p99);
+            ctx.metrics.set(metric::LATENCY_P50_MS, l.p50);
+            ctx.metrics.set(metric::LATENCY_P99_MS, l.p99);
         }
     }
     mailbox.close();

@@ -5,7 +5,7 @@
 
 use super::arm_file::{joint_names, read_arm_file};
 use super::runtime::{run_node, NodeCommon, NodeContext};
-use crate::transport::{monotonic_ns, sample_published_ns, unix_ns, NO_PUBLISH_STAMP};
+use crate::transport::{monotonic_ns, sample_published_ns, unix_ns};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use shroud_core::guard::{
@@ -14,6 +14,7 @@ use shroud_core::guard::{
 use shroud_core::message::{
     max_skew_ns_from_secs, CollisionMessage, JointStateMessage, SurrogateMessage, TopicKind,
 };
+use shroud_core::metrics::names::{self as metric, Counter};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
@@ -181,7 +182,7 @@ fn subscribe_view(
             let key = sample.key_expr().to_string();
             let Some(published_ns) = sample_published_ns(&sample) else {
                 lock(&guard).invalidate(view);
-                c.metrics.add(NO_PUBLISH_STAMP, 1);
+                c.metrics.add(metric::NO_PUBLISH_STAMP, 1);
                 return tracing::warn!(%key, "surrogate without a zenoh timestamp: its transit is unknown");
             };
             let built = SurrogateMessage::from_bytes(&sample.payload().to_bytes())
@@ -212,9 +213,9 @@ fn subscribe_view(
             // Not under the lock: a log line may block on a slow stderr.
             let accepted = lock(&guard).accept(view, input, arrived_ns, arrived_wall_ns);
             match accepted {
-                Ok(()) => c.metrics.add("surrogates", 1),
+                Ok(()) => c.metrics.add(metric::SURROGATES, 1),
                 Err(refused) => {
-                    c.metrics.add(refused.counter(), 1);
+                    c.metrics.add(Counter::of(refused.counter()), 1);
                     tracing::warn!(%key, "surrogate refused: {refused}");
                 }
             }
@@ -281,18 +282,18 @@ impl Checker {
         let out: CollisionMessage =
             lock(&self.guard).message(decision, &self.arm_name, joints, check_ns);
         let m = &self.ctx.metrics;
-        m.add("published", 1);
-        m.add(out.verdict.verdict_counter(), 1);
+        m.add(metric::PUBLISHED, 1);
+        m.add(Counter::of(out.verdict.verdict_counter()), 1);
         if out.stop {
-            m.add("stops", 1);
+            m.add(metric::STOPS, 1);
         }
-        m.set("min_clearance", out.min_clearance);
-        m.set("surrogate_age_ms", out.surrogate_age_ns as f64 / 1e6);
-        m.set("check_us", check_ns as f64 / 1e3);
+        m.set(metric::MIN_CLEARANCE, out.min_clearance);
+        m.set(metric::SURROGATE_AGE_MS, out.surrogate_age_ns as f64 / 1e6);
+        m.set(metric::CHECK_US, check_ns as f64 / 1e3);
         match out.to_bytes() {
             Ok(bytes) => {
                 if let Err(e) = self.publisher.put(bytes).wait() {
-                    m.add("publish_errors", 1);
+                    m.add(metric::PUBLISH_ERRORS, 1);
                     tracing::warn!("publish collision: {e}");
                 }
             }

@@ -2,6 +2,7 @@
 //! status publisher.
 
 use shroud_core::message::NodeStatusMessage;
+use shroud_core::metrics::names::{Counter, Gauge};
 use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::sync::{Mutex, MutexGuard};
@@ -19,15 +20,15 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
 }
 
 impl NodeMetrics {
-    pub fn add(&self, counter: &'static str, n: u64) {
+    pub fn add(&self, counter: Counter, n: u64) {
         *lock(&self.counters)
-            .entry(Cow::Borrowed(counter))
+            .entry(Cow::Borrowed(counter.name))
             .or_insert(0) += n;
     }
 
     /// Sets a counter that another component keeps (e.g. a mailbox's drops).
-    pub fn set_counter(&self, counter: &'static str, value: u64) {
-        lock(&self.counters).insert(Cow::Borrowed(counter), value);
+    pub fn set_counter(&self, counter: Counter, value: u64) {
+        lock(&self.counters).insert(Cow::Borrowed(counter.name), value);
     }
 
     /// [`Self::set_counter`] for a name made at run time (per sensor).
@@ -35,9 +36,9 @@ impl NodeMetrics {
         lock(&self.counters).insert(Cow::Owned(counter), value);
     }
 
-    pub fn set(&self, gauge: &'static str, value: f64) {
+    pub fn set(&self, gauge: Gauge, value: f64) {
         if value.is_finite() {
-            lock(&self.gauges).insert(gauge, value);
+            lock(&self.gauges).insert(gauge.name, value);
         }
     }
 
@@ -55,8 +56,8 @@ impl NodeMetrics {
         lock(&self.labels).get(label).cloned()
     }
 
-    pub fn counter(&self, counter: &str) -> u64 {
-        lock(&self.counters).get(counter).copied().unwrap_or(0)
+    pub fn counter(&self, counter: Counter) -> u64 {
+        lock(&self.counters).get(counter.name).copied().unwrap_or(0)
     }
 
     /// Copies the current values into a status message.

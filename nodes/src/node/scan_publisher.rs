@@ -9,6 +9,7 @@ use crate::transport::{unix_ns, PayloadWriter};
 use anyhow::Result;
 use shroud_core::ingest::Scan;
 use shroud_core::message::{check_stamp_skew, max_skew_ns_from_secs, SensorPose, TopicKind};
+use shroud_core::metrics::names as metric;
 use std::sync::Arc;
 use std::time::Instant;
 use zenoh::Wait;
@@ -67,7 +68,7 @@ impl<'a> CloudOut<'a> {
         since_receipt: impl Fn() -> u64,
     ) {
         if let Err(skew) = check_stamp_skew(scan.stamp_ns, unix_ns(), self.max_skew_ns) {
-            self.ctx.metrics.add("clock_skew", 1);
+            self.ctx.metrics.add(metric::CLOCK_SKEW, 1);
             tracing::warn!(device = %self.device, "device {skew}");
         }
         let published = scan
@@ -83,9 +84,9 @@ impl<'a> CloudOut<'a> {
                     .map_err(|e| anyhow::anyhow!("{e}"))
             });
         match published {
-            Ok(()) => self.ctx.metrics.add("published", 1),
+            Ok(()) => self.ctx.metrics.add(metric::PUBLISHED, 1),
             Err(e) => {
-                self.ctx.metrics.add("publish_errors", 1);
+                self.ctx.metrics.add(metric::PUBLISH_ERRORS, 1);
                 tracing::warn!("publish {}: {e}", self.key);
             }
         }
@@ -114,10 +115,10 @@ pub(super) fn cloud_publisher<'a>(
 pub(super) fn mirror_reader_counters(ctx: &NodeContext, stats: &ReaderStats) {
     let m = &ctx.metrics;
     m.set_counter(
-        "dropped_malformed",
+        metric::DROPPED_MALFORMED,
         stats.decoder.total_errors() + stats.transport.total_errors(),
     );
-    m.set_counter("disconnects", stats.disconnects);
-    m.set_counter("open_failures", stats.open_failures);
-    m.set_counter("scans", stats.scans);
+    m.set_counter(metric::DISCONNECTS, stats.disconnects);
+    m.set_counter(metric::OPEN_FAILURES, stats.open_failures);
+    m.set_counter(metric::SCANS, stats.scans);
 }

@@ -8,6 +8,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use shroud_core::format::parse_triangle_mesh;
 use shroud_core::message::{CloudView, SensorPose, TopicKind};
+use shroud_core::metrics::names as metric;
 use shroud_sim::{RangeScanner, ScanResolution, Scene};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -126,7 +127,7 @@ fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene) -> Result<()> {
         }
         let behind = ((now - next).as_secs_f64() / period.as_secs_f64()) as u64;
         if behind > 0 {
-            ctx.metrics.add("missed_ticks", behind);
+            ctx.metrics.add(metric::MISSED_TICKS, behind);
         }
         next += period * (behind as u32 + 1);
         // The simulator is the sensor: the cloud shows the scene at the time
@@ -149,16 +150,16 @@ fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene) -> Result<()> {
         let msg = msg.aligned()?;
         let payload = writer.encode(&msg)?;
         match publisher.put(payload).wait() {
-            Ok(()) => ctx.metrics.add("published", 1),
+            Ok(()) => ctx.metrics.add(metric::PUBLISHED, 1),
             Err(e) => {
-                ctx.metrics.add("publish_errors", 1);
+                ctx.metrics.add(metric::PUBLISH_ERRORS, 1);
                 tracing::warn!("publish {key}: {e}");
             }
         }
         let (shm_sent, copied) = writer.counts();
-        ctx.metrics.set_counter("sent_shm", shm_sent);
-        ctx.metrics.set_counter("sent_copy", copied);
-        ctx.metrics.set("points", points.len() as f64);
+        ctx.metrics.set_counter(metric::SENT_SHM, shm_sent);
+        ctx.metrics.set_counter(metric::SENT_COPY, copied);
+        ctx.metrics.set(metric::POINTS, points.len() as f64);
         sequence += 1;
     }
     Ok(())

@@ -11,6 +11,7 @@ use crate::transport::{unix_ns, Mailbox};
 use anyhow::Result;
 use clap::Args;
 use shroud_core::message::{CloudView, SmoothFitReport, SmoothPatchesMessage, TopicKind};
+use shroud_core::metrics::names as metric;
 use shroud_core::smooth::{Parametrisation, SmoothFitter, SmoothSurface};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -67,17 +68,18 @@ fn serve(
     let mailbox = Arc::new(Mailbox::new(1));
     let _subscriber = ctx.subscribe_into(&input, &mailbox)?;
     tracing::info!(%input, %output, functions = fitter.basis.len(), kind = parametrisation.kind(), "fitting");
-    ctx.metrics.set("functions", fitter.basis.len() as f64);
+    ctx.metrics
+        .set(metric::FUNCTIONS, fitter.basis.len() as f64);
     // The last surface published: a parametric fit of the next cloud starts
     // from it (fewer corrections for the same error on a steady object).
     let mut previous: Option<SmoothSurface> = None;
     while !ctx.stopping() {
         ctx.metrics
-            .set_counter("dropped_backlog", mailbox.dropped());
+            .set_counter(metric::DROPPED_BACKLOG, mailbox.dropped());
         let Some((key, payload)) = mailbox.pop(Duration::from_millis(100)) else {
             continue;
         };
-        ctx.metrics.add("received", 1);
+        ctx.metrics.add(metric::RECEIVED, 1);
         let setup = FitSetup {
             fitter: &fitter,
             parametrisation: &parametrisation,
@@ -88,9 +90,9 @@ fn serve(
             Ok(Some((bytes, surface))) => {
                 previous = Some(surface);
                 match publisher.put(bytes).wait() {
-                    Ok(()) => ctx.metrics.add("published", 1),
+                    Ok(()) => ctx.metrics.add(metric::PUBLISHED, 1),
                     Err(e) => {
-                        ctx.metrics.add("publish_errors", 1);
+                        ctx.metrics.add(metric::PUBLISH_ERRORS, 1);
                         tracing::warn!("publish {output}: {e}");
                     }
                 }
@@ -133,7 +135,7 @@ fn fit_one(
     let start = Instant::now();
     let xyz: Vec<[f64; 3]> = points.iter().map(|p| p.map(f64::from)).collect();
     let (samples, values, outside) = parametrisation.sample_inside(&xyz);
-    ctx.metrics.add("points_outside", outside as u64);
+    ctx.metrics.add(metric::POINTS_OUTSIDE, outside as u64);
     let fit = fitter.fit_as(
         parametrisation,
         &samples,
@@ -147,16 +149,16 @@ fn fit_one(
             (fit.surface, errors)
         }
         Err(e) => {
-            ctx.metrics.add("fit_errors", 1);
+            ctx.metrics.add(metric::FIT_ERRORS, 1);
             tracing::warn!(sequence = msg.sequence, "cloud not fitted: {e}");
             return Ok(None);
         }
     };
     let fit_ns = start.elapsed().as_nanos() as u64;
-    ctx.metrics.set("fit_ms", fit_ns as f64 / 1e6);
-    ctx.metrics.set("rmse", errors.rmse);
+    ctx.metrics.set(metric::FIT_MS, fit_ns as f64 / 1e6);
+    ctx.metrics.set(metric::RMSE, errors.rmse);
     ctx.metrics.set(
-        "latency_ms",
+        metric::LATENCY_MS,
         unix_ns().saturating_sub(msg.stamp_ns) as f64 / 1e6,
     );
     let report = SmoothFitReport {

@@ -14,6 +14,7 @@ use crate::transport::unix_ns;
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use shroud_core::message::TopicKey;
+use shroud_core::metrics::names as metric;
 use shroud_core::record::layout::recording_metadata;
 use shroud_core::record::{
     split_path, ChunkPolicy, DiskReserve, DropCause, SplitPolicy, TopicFilter,
@@ -292,9 +293,9 @@ fn print_summary(files: &[WrittenFile], recording: &Recording, elapsed: Duration
     let seconds = elapsed.as_secs_f64();
     println!(
         "recorded {} of {} messages received (and {} Foxglove views): {messages} MCAP messages, {:.3} MB in {} file(s) over {seconds:.1} s ({:.2} MB/s)",
-        recording.counter("written"),
-        recording.counter("received"),
-        recording.counter("views_written"),
+        recording.counter(metric::WRITTEN),
+        recording.counter(metric::RECEIVED),
+        recording.counter(metric::VIEWS_WRITTEN),
         bytes as f64 / 1e6,
         files.len(),
         bytes as f64 / 1e6 / seconds.max(1e-9)

@@ -12,6 +12,7 @@ use anyhow::Result;
 use clap::Args;
 use mcap::records::Record;
 use shroud_core::message::{CloudMessage, JointStateMessage, TopicKey, TopicKind};
+use shroud_core::metrics::names as metric;
 use shroud_core::record::layout::{replayable, ChannelDescription};
 use shroud_core::record::{Pace, ReplaySchedule, TopicFilter};
 use std::collections::HashMap;
@@ -106,7 +107,7 @@ fn replay(ctx: Arc<NodeContext>, plan: Plan) -> Result<()> {
     let mut out = Publishers::new(&ctx, started + plan.wait_subscribers);
     let mut warned = false;
     for pass in 0u64.. {
-        ctx.metrics.set("pass", pass as f64);
+        ctx.metrics.set(metric::PASS, pass as f64);
         let mut pass_state = Pass::default();
         let mut published = 0u64;
         let ending = read_records(&plan.file, |record| {
@@ -265,9 +266,9 @@ impl<'a> Publishers<'a> {
         }
         let publisher = &self.by_topic[&topic];
         match publisher.put(self.writer.copy(data)).wait() {
-            Ok(()) => self.ctx.metrics.add("published", 1),
+            Ok(()) => self.ctx.metrics.add(metric::PUBLISHED, 1),
             Err(e) => {
-                self.ctx.metrics.add("publish_errors", 1);
+                self.ctx.metrics.add(metric::PUBLISH_ERRORS, 1);
                 tracing::warn!("publish {}: {e}", publisher.key_expr());
             }
         }

@@ -3,6 +3,7 @@
 //! the node's status counters) and whether the writer still takes messages.
 
 use crate::node::NodeMetrics;
+use shroud_core::metrics::names::{self as metric, Counter};
 use shroud_core::record::{DropCause, DropCounts};
 use std::sync::{Arc, Mutex, MutexGuard};
 
@@ -21,11 +22,11 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
 impl Recording {
     pub fn new(metrics: Arc<NodeMetrics>) -> Self {
         for cause in DropCause::ALL {
-            metrics.set_counter(cause.counter(), 0);
+            metrics.set_counter(Counter::of(cause.counter()), 0);
         }
-        metrics.set_counter("views_written", 0);
-        metrics.set_counter("views_failed", 0);
-        metrics.set_counter("views_paced", 0);
+        metrics.set_counter(metric::VIEWS_WRITTEN, 0);
+        metrics.set_counter(metric::VIEWS_FAILED, 0);
+        metrics.set_counter(metric::VIEWS_PACED, 0);
         Self {
             metrics,
             drops: Mutex::default(),
@@ -35,35 +36,35 @@ impl Recording {
 
     /// A message of a recorded topic arrived.
     pub fn received(&self) {
-        self.metrics.add("received", 1);
+        self.metrics.add(metric::RECEIVED, 1);
     }
 
     pub fn written(&self, bytes: u64) {
-        self.metrics.add("written", 1);
-        self.metrics.add("bytes_written", bytes);
+        self.metrics.add(metric::WRITTEN, 1);
+        self.metrics.add(metric::BYTES_WRITTEN, bytes);
     }
 
     /// Foxglove views written (`--foxglove`), and the messages of heavy
     /// streams left without a view by `--foxglove-rate` so far.
     pub fn views_written(&self, n: u64, paced: u64) {
-        self.metrics.add("views_written", n);
-        self.metrics.set_counter("views_paced", paced);
+        self.metrics.add(metric::VIEWS_WRITTEN, n);
+        self.metrics.set_counter(metric::VIEWS_PACED, paced);
     }
 
     /// A recorded message whose Foxglove view could not be made (the raw
     /// message is recorded all the same).
     pub fn view_failed(&self, reason: &str) {
-        self.metrics.add("views_failed", 1);
+        self.metrics.add(metric::VIEWS_FAILED, 1);
         tracing::warn!("no Foxglove view: {reason}");
     }
 
     pub fn dropped(&self, topic: &str, cause: DropCause) {
         lock(&self.drops).add(topic, cause);
-        self.metrics.add(cause.counter(), 1);
+        self.metrics.add(Counter::of(cause.counter()), 1);
     }
 
     pub fn queue_bytes(&self, bytes: usize) {
-        self.metrics.set("queue_mb", bytes as f64 / 1e6);
+        self.metrics.set(metric::QUEUE_MB, bytes as f64 / 1e6);
     }
 
     /// Stops taking messages (the first cause is kept).
@@ -84,7 +85,7 @@ impl Recording {
         lock(&self.drops).clone()
     }
 
-    pub fn counter(&self, name: &str) -> u64 {
-        self.metrics.counter(name)
+    pub fn counter(&self, counter: Counter) -> u64 {
+        self.metrics.counter(counter)
     }
 }

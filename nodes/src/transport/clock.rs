@@ -18,10 +18,6 @@ pub fn monotonic_ns() -> u64 {
     START.get_or_init(Instant::now).elapsed().as_nanos() as u64
 }
 
-/// The status counter of samples that carry no zenoh timestamp, whose transit
-/// therefore cannot be counted.
-pub const NO_PUBLISH_STAMP: &str = "no_publish_stamp";
-
 /// When a sample was published, on its publisher's wall clock (nanoseconds
 /// since the Unix epoch): its zenoh timestamp. Every shroud session stamps
 /// what it publishes (timestamping is on in [`ZenohArgs::config`]); a sample

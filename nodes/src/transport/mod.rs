@@ -13,7 +13,7 @@ mod shm_cleanup;
 mod signal;
 
 pub use args::{OnOff, ZenohArgs};
-pub use clock::{monotonic_ns, sample_published_ns, unix_ns, NO_PUBLISH_STAMP};
+pub use clock::{monotonic_ns, sample_published_ns, unix_ns};
 pub use lifeline::{
     die_with_parent, keep_outputs_writable, last_words_and_exit, silence_broken_outputs,
     watch_parent,

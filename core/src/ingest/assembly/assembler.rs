@@ -22,13 +22,6 @@ const MAX_WAITING_RAYS: usize = 65_536;
 /// margin; a reading less sure of its place is dropped.
 pub const DEFAULT_MAX_POSITION_ERROR_M: f64 = 0.25;
 
-/// Status counter: valid readings dropped because their time has no bound
-/// ([`StampBound::Unbounded`], or joint samples that do not cover it).
-pub const READINGS_LATE_UNBOUNDED: &str = "readings_late_unbounded";
-/// Status counter: valid readings dropped because their position error
-/// bound exceeds [`AssemblyConfig::max_position_error_m`].
-pub const READINGS_LATE_BEYOND_BOUND: &str = "readings_late_beyond_bound";
-
 /// How scans become clouds.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AssemblyConfig {
@@ -43,7 +36,7 @@ pub struct AssemblyConfig {
     pub max_joint_wait_ns: u64,
     /// A reading whose position error bound (from the uncertainty of its
     /// time, [`StampBound`], and the mount's motion) exceeds this many
-    /// metres is dropped and counted ([`READINGS_LATE_BEYOND_BOUND`]).
+    /// metres is dropped and counted (the status counter `readings_late_beyond_bound`).
     pub max_position_error_m: f64,
 }
 
@@ -93,10 +86,10 @@ pub struct AssemblyStats {
     /// Joint samples refused (non-finite, or not later than the last).
     pub joint_samples_refused: u64,
     /// Valid readings dropped: their time has no bound
-    /// ([`READINGS_LATE_UNBOUNDED`]).
+    /// (the status counter `readings_late_unbounded`).
     pub readings_late_unbounded: u64,
     /// Valid readings dropped: their position error bound exceeds the
-    /// configured maximum ([`READINGS_LATE_BEYOND_BOUND`]).
+    /// configured maximum (the status counter `readings_late_beyond_bound`).
     pub readings_late_beyond_bound: u64,
 }
 

@@ -24,7 +24,6 @@ mod tests;
 
 pub use assembler::{
     AssembledCloud, AssemblyConfig, AssemblyStats, CloudAssembler, DEFAULT_MAX_POSITION_ERROR_M,
-    READINGS_LATE_BEYOND_BOUND, READINGS_LATE_UNBOUNDED,
 };
 pub use error::AssemblyError;
 pub use joint_track::JointTrack;

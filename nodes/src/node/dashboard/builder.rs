@@ -17,6 +17,7 @@ use shroud_core::message::{
     CloudView, CollisionMessage, JointStateMessage, NodeStatusMessage, SmoothPatchesMessage,
     SurrogateMessage, TopicKey, TopicKind,
 };
+use shroud_core::metrics::names as metric;
 use shroud_core::metrics::NodeHealth;
 use shroud_core::pace::Paced;
 use shroud_core::scene::pose_arm;
@@ -348,14 +349,17 @@ impl FrameBuilder {
 
     fn send_nodes(&self, now: u64) {
         let m = &self.ctx.metrics;
-        m.set("browsers", self.hub.count() as f64);
-        m.set_counter("frames_sent", self.hub.frames_sent.load(Ordering::Relaxed));
+        m.set(metric::BROWSERS, self.hub.count() as f64);
         m.set_counter(
-            "frames_superseded",
+            metric::FRAMES_SENT,
+            self.hub.frames_sent.load(Ordering::Relaxed),
+        );
+        m.set_counter(
+            metric::FRAMES_SUPERSEDED,
             self.hub.frames_superseded.load(Ordering::Relaxed),
         );
-        m.set_counter("samples_superseded", self.inbox.superseded());
-        m.set_counter("paced_superseded", self.paced.superseded());
+        m.set_counter(metric::SAMPLES_SUPERSEDED, self.inbox.superseded());
+        m.set_counter(metric::PACED_SUPERSEDED, self.paced.superseded());
         let rates = self.inbox.rates(now);
         if !self.browsers() {
             return;
@@ -364,7 +368,7 @@ impl FrameBuilder {
             clients: self.hub.count(),
             frames_sent: self.hub.frames_sent.load(Ordering::Relaxed),
             frames_superseded: self.hub.frames_superseded.load(Ordering::Relaxed),
-            dropped_malformed: m.counter("dropped_malformed"),
+            dropped_malformed: m.counter(metric::DROPPED_MALFORMED),
         };
         let uptime = now.saturating_sub(self.started_ns) as f64 / 1e9;
         let frame = nodes_frame(

@@ -14,6 +14,7 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use axum::Router;
 use shroud_core::dashboard::{blend_result_frame, error_frame, BrowserCommand};
+use shroud_core::metrics::names as metric;
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 
@@ -66,7 +67,7 @@ async fn upgrade(ws: WebSocketUpgrade, State(http): State<Http>) -> Response {
 /// One browser's connection: frames out as the hub gives them, commands in.
 async fn serve_browser(mut socket: WebSocket, http: Http) {
     let browser = http.hub.join(http.point_budget);
-    http.ctx.metrics.add("browsers_connected", 1);
+    http.ctx.metrics.add(metric::BROWSERS_CONNECTED, 1);
     let hello = http
         .shared
         .hello
@@ -122,6 +123,6 @@ async fn on_command(http: &Http, browser: &Browser, text: &str) {
 
 fn refuse(http: &Http, browser: &Browser, why: &str) {
     http.ctx.drop_malformed("browser", &why);
-    let n = http.ctx.metrics.counter("dropped_malformed");
+    let n = http.ctx.metrics.counter(metric::DROPPED_MALFORMED);
     browser.put(&format!("error/{n}"), Arc::new(error_frame(why)));
 }

@@ -23,6 +23,7 @@ use shroud_core::message::{
     CloudView, CollisionMessage, JointStateMessage, NodeStatusMessage, SurrogateMessage, TopicKey,
     TopicKind,
 };
+use shroud_core::metrics::names as metric;
 use shroud_core::pace::Paced;
 use shroud_core::scene::pose_arm;
 use std::collections::BTreeMap;
@@ -284,9 +285,9 @@ impl Bridge {
 
     fn refresh_metrics(&self, clients: usize) {
         let m = &self.ctx.metrics;
-        m.set("clients", clients as f64);
-        m.set_counter("messages_logged", self.logged);
-        m.set_counter("samples_superseded", self.inbox.superseded());
-        m.set_counter("paced_superseded", self.paced.superseded());
+        m.set(metric::CLIENTS, clients as f64);
+        m.set_counter(metric::MESSAGES_LOGGED, self.logged);
+        m.set_counter(metric::SAMPLES_SUPERSEDED, self.inbox.superseded());
+        m.set_counter(metric::PACED_SUPERSEDED, self.paced.superseded());
     }
 }

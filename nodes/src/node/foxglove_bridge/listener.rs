@@ -13,6 +13,7 @@ use foxglove::websocket::{ChannelView, Client, ClientChannel, ServerListener};
 use shroud_core::blend::BlendCommand;
 use shroud_core::dashboard::BlendPalette;
 use shroud_core::message::BlendRequest;
+use shroud_core::metrics::names as metric;
 use std::collections::BTreeSet;
 use std::sync::{Arc, Mutex, MutexGuard};
 
@@ -62,7 +63,7 @@ impl Listener {
 
 impl ServerListener for Listener {
     fn on_message_data(&self, _client: Client, channel: &ClientChannel, payload: &[u8]) {
-        self.ctx.metrics.add("client_messages", 1);
+        self.ctx.metrics.add(metric::CLIENT_MESSAGES, 1);
         let (command, part) = match Self::command(channel, payload) {
             Ok(request) => request,
             Err(why) => {
@@ -76,7 +77,7 @@ impl ServerListener for Listener {
             .blend
             .send(&self.ctx, palette.as_ref(), &command, part.as_deref());
         if let Err(why) = sent {
-            self.ctx.metrics.add("blend_refused", 1);
+            self.ctx.metrics.add(metric::BLEND_REFUSED, 1);
             tracing::warn!("a client's blend command was not sent: {why}");
         }
     }
@@ -86,6 +87,6 @@ impl ServerListener for Listener {
     }
 
     fn on_client_connect(&self) {
-        self.ctx.metrics.add("clients_connected", 1);
+        self.ctx.metrics.add(metric::CLIENTS_CONNECTED, 1);
     }
 }

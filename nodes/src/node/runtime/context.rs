@@ -6,6 +6,7 @@ use crate::transport::{topic_publisher, Mailbox, PayloadWriter, ZenohArgs};
 use anyhow::Result;
 use clap::Args;
 use shroud_core::message::{TopicKind, Topics};
+use shroud_core::metrics::names as metric;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use zenoh::bytes::ZBytes;
@@ -119,7 +120,7 @@ impl NodeContext {
 
     /// A message that could not be used: logged with its key and counted.
     pub fn drop_malformed(&self, key: &str, error: &dyn std::fmt::Display) {
-        self.metrics.add("dropped_malformed", 1);
+        self.metrics.add(metric::DROPPED_MALFORMED, 1);
         tracing::warn!(key, "dropped a malformed message: {error}");
     }
 }

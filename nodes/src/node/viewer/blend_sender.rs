@@ -6,6 +6,7 @@ use crate::transport::unix_ns;
 use shroud_core::blend::BlendCommand;
 use shroud_core::dashboard::BlendPalette;
 use shroud_core::message::{BlendCommandMessage, TopicKind};
+use shroud_core::metrics::names as metric;
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
@@ -55,7 +56,7 @@ impl BlendSender {
             .put(bytes)
             .wait()
             .map_err(|e| format!("publish: {e}"))?;
-        ctx.metrics.add("blend_commands", 1);
+        ctx.metrics.add(metric::BLEND_COMMANDS, 1);
         Ok(())
     }
 }
