@@ -1,4 +1,4 @@
-//! What a browser may ask of the dashboard node (PROTOCOL.md, "Browser to
+//! What a browser may ask of the dashboard node (docs/dashboard-protocol.md, "Browser to
 //! server"), decoded and checked: blend commands, validated exactly as a
 //! `BlendCommandMessage` from any other sender is, and per-browser options.
 

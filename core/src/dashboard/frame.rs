@@ -1,5 +1,5 @@
 //! The frame layout: `u32` header length, the JSON header, spaces to a 4-byte
-//! boundary, then each array padded to a 4-byte boundary (PROTOCOL.md). Arrays
+//! boundary, then each array padded to a 4-byte boundary (docs/dashboard-protocol.md). Arrays
 //! are little-endian so that a browser (little-endian on every platform it runs
 //! on) views them with `Float32Array(buffer, offset, count)`.
 

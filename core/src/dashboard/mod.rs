@@ -1,4 +1,4 @@
-//! The web dashboard's wire protocol (`nodes/src/node/dashboard/PROTOCOL.md`) as
+//! The web dashboard's wire protocol (`docs/dashboard-protocol.md`) as
 //! pure code: the binary frame layout (a JSON header and little-endian arrays
 //! a browser views without copying), the frames built from decoded messages,
 //! and the commands a browser sends back. The node only moves these bytes.

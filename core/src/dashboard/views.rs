@@ -1,4 +1,4 @@
-//! The frames of PROTOCOL.md built from decoded messages: what the page draws
+//! The frames of docs/dashboard-protocol.md built from decoded messages: what the page draws
 //! of clouds, surrogates, smooth fits, the arm, verdicts and the nodes.
 
 use super::frame::{ArrayData, Frame};

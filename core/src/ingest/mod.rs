@@ -1,6 +1,6 @@
 //! Sensor ingest codecs: turning the bytes and frames of depth/range sensors into
 //! [`Scan`]s, and scans back into bytes for simulators. Pure: no I/O, no threads,
-//! no clocks. The wire protocols are specified in `PROTOCOLS.md` next to this file.
+//! no clocks. The wire protocols are specified in `docs/sensor-protocols.md`.
 //!
 //! - [`serial`]: a framed binary protocol for serial range sensors;
 //! - [`can`]: a CAN range-sensor protocol over classic 8-byte frames, plus the

@@ -593,7 +593,12 @@ env = { RUST_LOG = "debug" }
             viewer("d1"),
             viewer("d2")
         );
-        assert!(LaunchFile::from_toml_str(&text).is_ok());
+        let file = LaunchFile::from_toml_str(&text).unwrap();
+        // Each sender is drawn: both viewers and the outside.
+        let chart = wiring_mermaid(&file).unwrap();
+        assert!(chart.contains("n0 -- \"blend/b\" --> n2"), "{chart}");
+        assert!(chart.contains("n1 -- \"blend/b\" --> n2"), "{chart}");
+        assert!(chart.contains("x0 --> n2"), "{chart}");
     }
 
     #[test]

@@ -273,25 +273,62 @@ impl LaunchFile {
             .collect()
     }
 
-    /// Every input with its source, in the file's order of nodes.
+    /// Every input with each of its sources, in the file's order of nodes.
     pub fn edges(&self) -> Result<Vec<Edge<'_>>, LaunchError> {
         let external = self.external_streams()?;
-        let mut producers: BTreeMap<Stream, &NodeSpec> = BTreeMap::new();
+        let producers = self.producers(&external)?;
+        let mut edges = Vec::new();
+        for node in &self.nodes {
+            for wire in node.wires()? {
+                if wire.port.direction != Direction::Input {
+                    continue;
+                }
+                let mut sources: Vec<Source<'_>> = producers
+                    .get(&wire.stream)
+                    .map(|list| list.iter().map(|n| Source::Node(n)).collect())
+                    .unwrap_or_default();
+                if external.contains(&wire.stream) {
+                    sources.push(Source::External);
+                }
+                if sources.is_empty() {
+                    return Err(node.error(format!(
+                        "input {} has no producer: no node of this file writes it and \
+                         `external` does not list it",
+                        wire.stream
+                    )));
+                }
+                edges.extend(sources.into_iter().map(|from| Edge {
+                    from,
+                    to: node,
+                    stream: wire.stream.clone(),
+                }));
+            }
+        }
+        Ok(edges)
+    }
+
+    /// Who writes each stream: one node, except blend commands, which may
+    /// come from several senders (pages, panels, `shroud blend-cmd` from
+    /// outside the file).
+    fn producers(
+        &self,
+        external: &[Stream],
+    ) -> Result<BTreeMap<Stream, Vec<&NodeSpec>>, LaunchError> {
+        let mut producers: BTreeMap<Stream, Vec<&NodeSpec>> = BTreeMap::new();
         for node in &self.nodes {
             for wire in node.wires()? {
                 if wire.port.direction != Direction::Output {
                     continue;
                 }
-                // Commands may come from several senders (pages, panels,
-                // `shroud blend-cmd`); every other stream has one producer.
+                let writers = producers.entry(wire.stream.clone()).or_default();
+                writers.push(node);
                 if wire.port.topic == TopicKind::Blend {
-                    producers.entry(wire.stream.clone()).or_insert(node);
                     continue;
                 }
-                if let Some(other) = producers.insert(wire.stream.clone(), node) {
+                if writers.len() > 1 {
                     return Err(node.error(format!(
                         "{} is also written by node {:?}: one producer per stream",
-                        wire.stream, other.name
+                        wire.stream, writers[0].name
                     )));
                 }
                 if external.contains(&wire.stream) {
@@ -302,31 +339,7 @@ impl LaunchFile {
                 }
             }
         }
-        let mut edges = Vec::new();
-        for node in &self.nodes {
-            for wire in node.wires()? {
-                if wire.port.direction != Direction::Input {
-                    continue;
-                }
-                let from = match producers.get(&wire.stream) {
-                    Some(producer) => Source::Node(producer),
-                    None if external.contains(&wire.stream) => Source::External,
-                    None => {
-                        return Err(node.error(format!(
-                            "input {} has no producer: no node of this file writes it and \
-                             `external` does not list it",
-                            wire.stream
-                        )))
-                    }
-                };
-                edges.push(Edge {
-                    from,
-                    to: node,
-                    stream: wire.stream,
-                });
-            }
-        }
-        Ok(edges)
+        Ok(producers)
     }
 }
 

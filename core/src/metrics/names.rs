@@ -58,7 +58,7 @@ pub const RECEIVED: Counter = counter(
 pub const PUBLISHED: Counter = counter(
     "published",
     &[Scanner, Fit, Guard, Arm, Serial, Can, Blend, Smooth, Replay],
-    "messages published",
+    "messages published (the guard counts each verdict before it is put)",
 );
 pub const PUBLISH_ERRORS: Counter = counter(
     "publish_errors",
@@ -70,12 +70,12 @@ pub const DROPPED_MALFORMED: Counter = counter(
     &[
         Fit, Guard, Arm, Serial, Can, Blend, Smooth, Dashboard, Foxglove,
     ],
-    "messages that could not be decoded or used (logged with their key)",
+    "messages that could not be decoded or used (logged with their key); for serial and can nodes, the driver's and the transport's error totals",
 );
 pub const DROPPED_BACKLOG: Counter = counter(
     "dropped_backlog",
     &[Fit, Smooth, Blend, Serial],
-    "messages dropped unread because newer ones arrived (the inbox keeps the newest)",
+    "messages dropped because the node's queue was full (the fit, smooth and blend nodes keep the newest; a serial node's assembler drops the new scan or joint state)",
 );
 pub const SEQUENCE_GAPS: Counter = counter(
     "sequence_gaps",
@@ -90,7 +90,7 @@ pub const CLOCK_OFFSET: Counter = counter(
 pub const CLOCK_SKEW: Counter = counter(
     "clock_skew",
     &[Guard, Serial, Can],
-    "stamps further than `max_skew` from this node's clock (refused)",
+    "stamps further than `max_skew` from this node's clock: a guard's view or a mount's joint state is refused; a sensor's own cloud is published and only counted",
 );
 pub const NO_PUBLISH_STAMP: Counter = counter(
     "no_publish_stamp",
@@ -161,7 +161,11 @@ pub const SURROGATE_AGE_MS: Gauge = gauge(
     "age of the oldest view behind the latest decision",
 );
 pub const HALTS: Counter = counter("halts", &[Arm], "times the arm halted");
-pub const VERDICTS: Counter = counter("verdicts", &[Arm], "verdicts received");
+pub const VERDICTS: Counter = counter(
+    "verdicts",
+    &[Arm],
+    "verdicts applied (every stop, and a clear for a joint state the deadman remembers)",
+);
 pub const VERDICTS_SUPERSEDED: Counter = counter(
     "verdicts_superseded",
     &[Arm],
@@ -221,12 +225,12 @@ pub const OPEN_FAILURES: Counter = counter(
 );
 pub const DISCONNECTS: Counter =
     counter("disconnects", &[Serial, Can], "times the device went away");
-pub const RECONNECTS: Counter = counter("reconnects", &[Serial], "times the device came back");
+pub const RECONNECTS: Counter = counter("reconnects", &[Serial], "reconnects the driver asked for");
 pub const BYTES_READ: Counter = counter("bytes_read", &[Serial], "bytes read from the port");
 pub const LINE_SETTING_FAILURES: Counter = counter(
     "line_setting_failures",
     &[Serial],
-    "failures to set the serial line (baud rate, parity)",
+    "failures to set the serial line (DTR, baud rate)",
 );
 pub const CLOUDS: Counter = counter("clouds", &[Serial], "clouds assembled");
 pub const INVALID_RAYS: Counter = counter(
@@ -237,12 +241,12 @@ pub const INVALID_RAYS: Counter = counter(
 pub const MOUNT_ANGLE_MISSING: Counter = counter(
     "mount_angle_missing",
     &[Serial],
-    "readings without a mount angle to place them",
+    "scans dropped because no mount angle places them",
 );
 pub const JOINT_SAMPLES_REFUSED: Counter = counter(
     "joint_samples_refused",
     &[Serial],
-    "joint states refused as a mount angle (bad stamp)",
+    "joint states refused as a mount angle (a non-finite angle, or a stamp not later than the last)",
 );
 pub const JOINT_SAMPLES_MALFORMED: Counter = counter(
     "joint_samples_malformed",
@@ -303,7 +307,7 @@ pub const FRAMES_UNSENT: Counter =
 pub const BYTES_DROPPED: Counter = counter(
     "bytes_dropped",
     &[DeviceSim],
-    "bytes the emulator dropped on purpose",
+    "bytes lost (in a stall, or beyond the device's buffer)",
 );
 pub const BYTES_FROM_HOST: Counter = counter(
     "bytes_from_host",
@@ -313,7 +317,7 @@ pub const BYTES_FROM_HOST: Counter = counter(
 pub const BYTES_GARBLED: Counter = counter(
     "bytes_garbled",
     &[DeviceSim],
-    "bytes the emulator garbled on purpose",
+    "bytes garbled by a baud-rate mismatch",
 );
 pub const BYTES_TO_HOST: Counter = counter(
     "bytes_to_host",
@@ -385,7 +389,11 @@ pub const QUEUE_MB: Gauge = gauge(
     &[Record],
     "megabytes waiting in the write queue",
 );
-pub const PASS: Gauge = gauge("pass", &[Replay], "passes through the file (with `loop`)");
+pub const PASS: Gauge = gauge(
+    "pass",
+    &[Replay],
+    "the index of the current pass through the file (0 first; with `loop`)",
+);
 
 /// Every counter above, in the order of `docs/metrics.md`.
 pub const COUNTERS: &[Counter] = &[

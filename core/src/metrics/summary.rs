@@ -55,13 +55,16 @@ impl GraphSummary {
         let mut parts = vec![format!("t={elapsed_s:6.1}s")];
         for (name, s) in &self.statuses {
             let mut part = format!("{name}: {} out", s.counter(names::PUBLISHED.name));
-            if let Some(p50) = s.gauge("fit_p50_ms") {
+            if let Some(p50) = s.gauge(names::FIT_P50_MS.name) {
                 part += &format!(", fit p50 {p50:.2} ms");
             }
-            if let (Some(p50), Some(p99)) = (s.gauge("latency_p50_ms"), s.gauge("latency_p99_ms")) {
+            if let (Some(p50), Some(p99)) = (
+                s.gauge(names::LATENCY_P50_MS.name),
+                s.gauge(names::LATENCY_P99_MS.name),
+            ) {
                 part += &format!(", latency p50 {p50:.2} p99 {p99:.2} ms");
             }
-            if let Some(ms) = s.gauge("blend_ms") {
+            if let Some(ms) = s.gauge(names::BLEND_MS.name) {
                 part += &format!(", last blend {ms:.0} ms");
             }
             let drops =
@@ -101,7 +104,7 @@ impl GraphSummary {
 /// A simulated arm's motion: moving or halted (by what, for how long), and
 /// the share of its life spent halted, from its status gauges and counters.
 fn arm_state(s: &NodeStatusMessage) -> String {
-    let halted_s = s.gauge("halted_s").unwrap_or(0.0);
+    let halted_s = s.gauge(names::HALTED_S.name).unwrap_or(0.0);
     let share = if s.uptime_s > 0.0 {
         100.0 * halted_s / s.uptime_s
     } else {
@@ -112,10 +115,10 @@ fn arm_state(s: &NodeStatusMessage) -> String {
         .filter(|v| s.counter(v.halt_counter()) > 0)
         .map(|v| format!("{} {}", s.counter(v.halt_counter()), v.name()))
         .collect();
-    let state = if s.gauge("halted").unwrap_or(0.0) > 0.0 {
+    let state = if s.gauge(names::HALTED.name).unwrap_or(0.0) > 0.0 {
         format!(
             "HALTED for {:.1} s",
-            s.gauge("halt_current_s").unwrap_or(0.0)
+            s.gauge(names::HALT_CURRENT_S.name).unwrap_or(0.0)
         )
     } else {
         "moving".to_owned()

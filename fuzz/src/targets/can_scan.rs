@@ -1,4 +1,4 @@
-//! shroud's CAN range-sensor protocol (`CanScanDecoder`, PROTOCOLS.md §2):
+//! shroud's CAN range-sensor protocol (`CanScanDecoder`, docs/sensor-protocols.md §2):
 //! frames in, scans out. A decoded scan, encoded again, decodes the same.
 
 use crate::can_records::{record, records};

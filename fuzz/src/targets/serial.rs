@@ -1,4 +1,4 @@
-//! shroud's serial range-sensor frames (`SerialScanDecoder`, PROTOCOLS.md
+//! shroud's serial range-sensor frames (`SerialScanDecoder`, docs/sensor-protocols.md
 //! §1): scans and errors do not depend on how the stream is chunked, and a
 //! decoded scan, encoded again, decodes the same.
 

@@ -16,7 +16,7 @@ use std::path::PathBuf;
 /// The device on the bus.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
 pub enum CanDeviceKind {
-    /// shroud's own CAN scan protocol (`PROTOCOLS.md` §2).
+    /// shroud's own CAN scan protocol (`docs/sensor-protocols.md` §2).
     #[default]
     Shroud,
     /// Continental ARS408-21 radar.

@@ -13,7 +13,7 @@ use std::time::Duration;
 /// The protocol the device on the port speaks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum DeviceKind {
-    /// shroud's own framed protocol (core/src/ingest/PROTOCOLS.md §1): 3D scans.
+    /// shroud's own framed protocol (docs/sensor-protocols.md §1): 3D scans.
     Shroud,
     /// A Hokuyo SCIP 2.0 lidar (URG-04LX, UTM-30LX, ...).
     Hokuyo,

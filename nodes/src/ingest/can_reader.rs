@@ -27,7 +27,7 @@ pub struct CanReaderConfig {
     pub backoff: BackoffConfig,
 }
 
-/// Reads scans of one CAN range sensor (`PROTOCOLS.md` §2) until `stop` is set
+/// Reads scans of one CAN range sensor (`docs/sensor-protocols.md` §2) until `stop` is set
 /// or the source finishes.
 ///
 /// Blocking, like [`run_serial_reader`](super::run_serial_reader). `open` makes

@@ -1,7 +1,7 @@
 //! Sensor ingest on devices: blocking readers that turn serial and CAN range
 //! sensors into [`Scan`]s, and writers that simulate such sensors. The codecs
 //! (pure) are in `shroud_core::ingest`; the protocols are specified in
-//! `core/src/ingest/PROTOCOLS.md`.
+//! `docs/sensor-protocols.md`.
 //!
 //! Readers run on their own thread until a stop flag is set:
 //!

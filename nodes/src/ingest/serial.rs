@@ -35,7 +35,7 @@ impl SerialReaderConfig {
     }
 }
 
-/// Reads scans from a serial range sensor (`PROTOCOLS.md` §1) until `stop` is set.
+/// Reads scans from a serial range sensor (`docs/sensor-protocols.md` §1) until `stop` is set.
 ///
 /// Blocking: run it on its own thread (or `spawn_blocking`). Every complete scan
 /// goes to `on_scan` together with the counters so far. Decode errors are counted

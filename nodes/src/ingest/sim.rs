@@ -53,7 +53,7 @@ pub fn write_with_patience(
     Ok(written)
 }
 
-/// A serial range sensor: every scan as protocol frames (`PROTOCOLS.md` §1).
+/// A serial range sensor: every scan as protocol frames (`docs/sensor-protocols.md` §1).
 pub struct SerialSensorWriter<W: Write> {
     pub out: W,
     pub encoder: SerialEncoder,

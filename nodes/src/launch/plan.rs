@@ -52,7 +52,11 @@ fn one_line(message: &str) -> String {
         .next()
         .and_then(|m| m.split("\n\nFor more information").next())
         .unwrap_or(message);
-    let text = body.split_whitespace().collect::<Vec<_>>().join(" ");
+    let lines = body.lines().filter(|l| !l.trim_start().starts_with("tip:"));
+    let text = lines
+        .flat_map(str::split_whitespace)
+        .collect::<Vec<_>>()
+        .join(" ");
     text.strip_prefix("error: ").unwrap_or(&text).to_owned()
 }
 

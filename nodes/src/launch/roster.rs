@@ -60,7 +60,7 @@ impl Roster {
         msg.stamp_ns = unix_ns();
         msg.uptime_s = started.elapsed().as_secs_f64();
         msg.counters.insert(
-            "dropped_malformed".into(),
+            shroud_core::metrics::names::DROPPED_MALFORMED.name.into(),
             self.dropped_malformed.load(Ordering::Relaxed),
         );
         for (name, child) in self.lock().iter() {

@@ -50,7 +50,7 @@ pub enum NodeCommand {
     Guard(GuardArgs),
     /// A simulated arm following a trajectory, halting when the guard says stop.
     Arm(ArmArgs),
-    /// A serial range sensor (PROTOCOLS.md section 1) published as clouds.
+    /// A serial range sensor (docs/sensor-protocols.md section 1) published as clouds.
     Serial(SerialNodeArgs),
     /// An emulated real range sensor (Hokuyo, RPLIDAR, Benewake) on a pseudo-terminal.
     DeviceSim(DeviceSimArgs),

@@ -1,5 +1,5 @@
 // The page's files hang together: every module an asset imports exists, every asset is reachable
-// from index.html, and the file list in PROTOCOL.md (which the node embeds) is exactly the files
+// from index.html, and the file list in docs/dashboard-protocol.md (the files the node embeds) is exactly the files
 // of assets/. Run: node --test tests/browser/unit/
 
 import assert from 'node:assert/strict';
@@ -42,8 +42,8 @@ test('every import and link of the page names an asset, and every asset is reach
   assert.deepEqual([...files].filter((file) => !reached.has(file)), [], 'assets nothing loads');
 });
 
-test('PROTOCOL.md lists exactly the files of assets/', () => {
-  const protocol = fs.readFileSync(path.join(DASHBOARD, 'PROTOCOL.md'), 'utf8');
+test('docs/dashboard-protocol.md lists exactly the files of assets/', () => {
+  const protocol = fs.readFileSync(path.join(DASHBOARD, '../../../../docs/dashboard-protocol.md'), 'utf8');
   const section = protocol.split('## Serving the page')[1];
   const listed = section.split('```')[1].split(/\s+/).filter(Boolean).sort();
   assert.deepEqual(listed, assetFiles().sort());

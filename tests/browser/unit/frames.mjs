@@ -1,4 +1,4 @@
-// Builds protocol frames (PROTOCOL.md, "Server to browser: binary frames") for the unit tests,
+// Builds protocol frames (docs/dashboard-protocol.md, "Server to browser: binary frames") for the unit tests,
 // written from the spec independently of the page's decoder, and a seeded random source.
 
 const pad4 = (n) => (n + 3) & ~3;

@@ -1,4 +1,4 @@
-//! CAN: the plain [`CanFrame`], the CAN range-sensor protocol (`PROTOCOLS.md` §2)
+//! CAN: the plain [`CanFrame`], the CAN range-sensor protocol (`docs/sensor-protocols.md` §2)
 //! with its encoder and scan decoder, and the two ways CAN frames travel outside
 //! a SocketCAN socket: SLCAN serial adapters ([`slcan`]) and candump logs
 //! ([`candump`]).

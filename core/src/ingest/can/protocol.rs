@@ -1,4 +1,4 @@
-//! The CAN range-sensor protocol (`PROTOCOLS.md` §2): four message ids from a
+//! The CAN range-sensor protocol (`docs/sensor-protocols.md` §2): four message ids from a
 //! base id, their 8-byte layouts, and the encoder (scan -> frames).
 
 use super::frame::CanFrame;

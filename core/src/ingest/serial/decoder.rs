@@ -24,7 +24,7 @@ impl Default for DecoderConfig {
     }
 }
 
-/// Streaming decoder of the serial range-sensor protocol (`PROTOCOLS.md` §1).
+/// Streaming decoder of the serial range-sensor protocol (`docs/sensor-protocols.md` §1).
 ///
 /// Every error it returns is also counted in [`SerialScanDecoder::stats`]. One
 /// corruption costs one error: bytes skipped while resynchronising after a bad

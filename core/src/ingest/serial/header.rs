@@ -1,5 +1,5 @@
 //! The 24-byte frame header of the serial range-sensor protocol (see
-//! `PROTOCOLS.md`, section 1): layout, point encodings, writing and validation.
+//! `docs/sensor-protocols.md`, section 1): layout, point encodings, writing and validation.
 
 use super::crc16::crc16;
 use crate::ingest::IngestError;

@@ -1,4 +1,4 @@
-//! The serial range-sensor protocol (`PROTOCOLS.md` §1): framed binary scans with
+//! The serial range-sensor protocol (`docs/sensor-protocols.md` §1): framed binary scans with
 //! a sync word, a CRC-16 guarded header and a CRC-32 trailer; an encoder and a
 //! streaming, resynchronising decoder.
 

@@ -1,6 +1,6 @@
 //! The dashboard's HTTP side (axum): the page's embedded files at `/`, and the
 //! WebSocket at `/ws` where each browser gets its frames from the hub and
-//! sends its commands (PROTOCOL.md).
+//! sends its commands (docs/dashboard-protocol.md).
 
 use super::assets;
 use super::builder::Shared;

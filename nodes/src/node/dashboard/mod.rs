@@ -1,6 +1,6 @@
 //! `shroud node dashboard`: the live monitoring page. It serves a page built
 //! into the binary (no file on disk, nothing from the internet) and one
-//! WebSocket per browser (PROTOCOL.md), and draws the namespace's clouds,
+//! WebSocket per browser (docs/dashboard-protocol.md), and draws the namespace's clouds,
 //! surrogates, smooth fits, arms, verdicts and nodes. Subscriptions drop
 //! (each sample supersedes the last), frames are built only while a browser
 //! is connected, and each browser gets only the latest frame of each stream.

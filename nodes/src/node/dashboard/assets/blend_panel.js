@@ -1,7 +1,7 @@
 // The Blending panel: a palette of the blend node's parts (from the hello) to drag onto the
 // cloud; a drop picks the cloud point under the cursor and sends a `drop` there; sliders and keys
 // send the part's absolute adjustment (spin, lift, tilt); commit and clear. Every command's
-// blend_result is shown, errors in red (PROTOCOL.md, "Browser to server").
+// blend_result is shown, errors in red (docs/dashboard-protocol.md, "Browser to server").
 
 const ADJUST_SEND_INTERVAL_MS = 100; // a slider drag sends at most this often (the latest values)
 const DEGREES = Math.PI / 180;

@@ -68,7 +68,7 @@ export class ViewControls {
     this.elements.help.hidden = !this.elements.help.hidden;
   }
 
-  // The node's --point-budget caps the range (PROTOCOL.md: 1000 to the node's budget).
+  // The node's --point-budget caps the range (docs/dashboard-protocol.md: 1000 to the node's budget).
   setBudgetLimit(limit) {
     if (limit === null) return;
     const { budget } = this.elements;

@@ -1,4 +1,4 @@
-// Reads each server message type of PROTOCOL.md into the plain object the page uses, checking
+// Reads each server message type of docs/dashboard-protocol.md into the plain object the page uses, checking
 // every field the page relies on. Unknown fields are ignored; `readMessage` returns null for an
 // unknown type (later protocol versions add types).
 

@@ -1,4 +1,4 @@
-// Splits one binary frame of the dashboard protocol (PROTOCOL.md, "Server to browser: binary
+// Splits one binary frame of the dashboard protocol (docs/dashboard-protocol.md, "Server to browser: binary
 // frames") into its JSON header and typed-array views of its bulk arrays, without copying.
 // Every way a frame can be malformed is a FrameError naming the field or byte offset at fault.
 

@@ -7,7 +7,7 @@ export const STREAM_COLORS = [
   [0.95, 0.90, 0.40], [0.55, 0.60, 1.00],
 ];
 
-// A blend output cloud's intensity: 0 parent, 1 part, 2 transition (PROTOCOL.md, `cloud`).
+// A blend output cloud's intensity: 0 parent, 1 part, 2 transition (docs/dashboard-protocol.md, `cloud`).
 export const BLEND_SOURCE_COLORS = [[0.55, 0.62, 0.72], [0.25, 0.80, 1.00], [1.00, 0.45, 0.15]];
 export const BLEND_SOURCE_NAMES = ['parent', 'part', 'transition'];
 
@@ -17,7 +17,7 @@ export const SURFACE_COLORS = {
   smooth: [0.45, 0.95, 0.60, 0.45],
 };
 
-// Per-link clearance band of a verdict (PROTOCOL.md, `verdict`), plus the two the page adds:
+// Per-link clearance band of a verdict (docs/dashboard-protocol.md, `verdict`), plus the two the page adds:
 // the link a stop names, and links of an arm with no verdict yet.
 export const BAND_COLORS = {
   stop: [0.95, 0.22, 0.22],

@@ -1,0 +1,137 @@
+//! The documentation's links: every relative link in the repository's
+//! Markdown files names a file that exists, and every `#anchor` a heading of
+//! the file it points into (GitHub's anchor rule), so the book has no dead
+//! links.
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+
+/// The Markdown files of the repository, outside build and dependency folders.
+fn markdown_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let skip = ["target", "node_modules", ".git", "corpus", "artifacts"];
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if path.is_dir() {
+            if !skip.contains(&name.as_str()) && !name.starts_with('.') {
+                markdown_files(&path, out);
+            }
+        } else if name.ends_with(".md") {
+            out.push(path);
+        }
+    }
+}
+
+/// The text outside fenced code blocks.
+fn prose(text: &str) -> String {
+    let mut inside = false;
+    let mut out = String::new();
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            inside = !inside;
+            continue;
+        }
+        if !inside {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// GitHub's anchor of a heading: lower case, punctuation but `-` and `_`
+/// dropped, spaces as `-`.
+fn anchor(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter(|c| c.is_alphanumeric() || matches!(c, '-' | '_' | ' '))
+        .map(|c| if c == ' ' { '-' } else { c })
+        .collect()
+}
+
+fn anchors(text: &str) -> BTreeSet<String> {
+    prose(text)
+        .lines()
+        .filter(|l| l.starts_with('#'))
+        .map(|l| anchor(l.trim_start_matches('#')))
+        .collect()
+}
+
+/// The targets of `[text](target)` links, outside code.
+fn links(text: &str) -> Vec<String> {
+    let prose = prose(text);
+    let mut out = Vec::new();
+    let mut rest = prose.as_str();
+    while let Some(at) = rest.find("](") {
+        rest = &rest[at + 2..];
+        if let Some(end) = rest.find(')') {
+            out.push(rest[..end].trim().to_string());
+            rest = &rest[end..];
+        }
+    }
+    out
+}
+
+#[test]
+fn every_relative_link_and_anchor_resolves() {
+    let mut files = Vec::new();
+    markdown_files(Path::new(ROOT), &mut files);
+    assert!(files.len() >= 10, "{} Markdown files", files.len());
+    let mut dead = Vec::new();
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap();
+        for link in links(&text) {
+            let external = ["http://", "https://", "mailto:"];
+            if external.iter().any(|p| link.starts_with(p)) || link.contains(' ') {
+                continue;
+            }
+            let (path, fragment) = match link.split_once('#') {
+                Some((p, f)) => (p, Some(f)),
+                None => (link.as_str(), None),
+            };
+            let target = if path.is_empty() {
+                file.clone()
+            } else {
+                file.parent().unwrap().join(path)
+            };
+            let shown = file
+                .strip_prefix(ROOT)
+                .unwrap_or(file)
+                .display()
+                .to_string();
+            if !target.exists() {
+                dead.push(format!("{shown}: {link} (no such file)"));
+                continue;
+            }
+            if let Some(fragment) = fragment {
+                let is_markdown = target.extension().is_some_and(|e| e == "md");
+                if is_markdown {
+                    let headings = anchors(&std::fs::read_to_string(&target).unwrap());
+                    if !headings.contains(fragment) {
+                        dead.push(format!("{shown}: {link} (no such heading)"));
+                    }
+                }
+            }
+        }
+    }
+    assert!(dead.is_empty(), "dead links:\n{}", dead.join("\n"));
+}
+
+#[test]
+fn anchors_follow_githubs_rule() {
+    assert_eq!(
+        anchor(" Guard soundness: brute force"),
+        "guard-soundness-brute-force"
+    );
+    assert_eq!(
+        anchor("`shroud launch` and --graph"),
+        "shroud-launch-and---graph"
+    );
+    let text = "# A\n```\n# not a heading\n[x](y.md)\n```\n[z](w.md#a)\n";
+    assert_eq!(links(text), vec!["w.md#a"]);
+    assert!(anchors(text).contains("a") && !anchors(text).contains("not-a-heading"));
+}
