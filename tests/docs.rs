@@ -85,8 +85,14 @@ fn every_relative_link_and_anchor_resolves() {
     for file in &files {
         let text = std::fs::read_to_string(file).unwrap();
         for link in links(&text) {
+            // `[x](<path> "title")`: the target is the first word.
+            let link = link.split_whitespace().next().unwrap_or("");
+            let link = link
+                .trim_start_matches('<')
+                .trim_end_matches('>')
+                .to_string();
             let external = ["http://", "https://", "mailto:"];
-            if external.iter().any(|p| link.starts_with(p)) || link.contains(' ') {
+            if link.is_empty() || external.iter().any(|p| link.starts_with(p)) {
                 continue;
             }
             let (path, fragment) = match link.split_once('#') {
@@ -95,6 +101,8 @@ fn every_relative_link_and_anchor_resolves() {
             };
             let target = if path.is_empty() {
                 file.clone()
+            } else if let Some(from_root) = path.strip_prefix('/') {
+                Path::new(ROOT).join(from_root)
             } else {
                 file.parent().unwrap().join(path)
             };
@@ -131,7 +139,7 @@ fn anchors_follow_githubs_rule() {
         anchor("`shroud launch` and --graph"),
         "shroud-launch-and---graph"
     );
-    let text = "# A\n```\n# not a heading\n[x](y.md)\n```\n[z](w.md#a)\n";
-    assert_eq!(links(text), vec!["w.md#a"]);
+    let text = "# A\n```\n# not a heading\n[x](y.md)\n```\n[z](w.md#a)\n[t](v.md \"title\")\n";
+    assert_eq!(links(text), vec!["w.md#a", "v.md \"title\""]);
     assert!(anchors(text).contains("a") && !anchors(text).contains("not-a-heading"));
 }

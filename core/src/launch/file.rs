@@ -488,6 +488,13 @@ env = { RUST_LOG = "debug" }
                 ),
                 "surrogate/s is also written by node \"x\"".into(),
             ),
+            (
+                format!(
+                    "external=[\"cloud/c\",\"surrogate/s\"]\n{}",
+                    one("fit", FIT_PORTS)
+                ),
+                "surrogate/s is written here and listed in external".into(),
+            ),
         ];
         for (text, needle) in cases {
             let err = LaunchFile::from_toml_str(&text).unwrap_err().to_string();

@@ -343,8 +343,9 @@ impl LaunchFile {
     }
 }
 
-/// The graph's checks: ports, shared options, one producer per stream, a
-/// producer for every input.
+/// The graph's checks: ports, shared options, one producer per stream (blend
+/// commands may have several, `external` among them), a producer for every
+/// input.
 pub fn check_graph(file: &LaunchFile) -> Result<(), LaunchError> {
     for node in &file.nodes {
         node.wires()?;

@@ -70,7 +70,7 @@ pub const DROPPED_MALFORMED: Counter = counter(
     &[
         Fit, Guard, Arm, Serial, Can, Blend, Smooth, Dashboard, Foxglove,
     ],
-    "messages that could not be decoded or used (logged with their key); for serial and can nodes, the driver's and the transport's error totals",
+    "messages that could not be decoded or used (logged with their key); for serial and can nodes, the driver's errors plus the transport's (a serial mount's undecodable joint states included)",
 );
 pub const DROPPED_BACKLOG: Counter = counter(
     "dropped_backlog",
@@ -164,7 +164,7 @@ pub const HALTS: Counter = counter("halts", &[Arm], "times the arm halted");
 pub const VERDICTS: Counter = counter(
     "verdicts",
     &[Arm],
-    "verdicts applied (every stop, and a clear for a joint state the deadman remembers)",
+    "verdicts applied (every stop, and a clear for a remembered joint state that is newer than the last stop)",
 );
 pub const VERDICTS_SUPERSEDED: Counter = counter(
     "verdicts_superseded",
@@ -230,7 +230,7 @@ pub const BYTES_READ: Counter = counter("bytes_read", &[Serial], "bytes read fro
 pub const LINE_SETTING_FAILURES: Counter = counter(
     "line_setting_failures",
     &[Serial],
-    "failures to set the serial line (DTR, baud rate)",
+    "failures to set the serial line (DTR, baud rate, input flush)",
 );
 pub const CLOUDS: Counter = counter("clouds", &[Serial], "clouds assembled");
 pub const INVALID_RAYS: Counter = counter(
@@ -307,7 +307,7 @@ pub const FRAMES_UNSENT: Counter =
 pub const BYTES_DROPPED: Counter = counter(
     "bytes_dropped",
     &[DeviceSim],
-    "bytes lost (in a stall, or beyond the device's buffer)",
+    "bytes lost (in a stall, or beyond the device's buffer or the host's backlog)",
 );
 pub const BYTES_FROM_HOST: Counter = counter(
     "bytes_from_host",

@@ -72,7 +72,7 @@ impl GraphSummary {
             if drops > 0 {
                 part += &format!(", {drops} dropped");
             }
-            if s.kind == "arm" {
+            if s.kind == crate::launch::NodeKind::Arm.as_str() {
                 part += &arm_state(s);
             }
             parts.push(part);
