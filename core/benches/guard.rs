@@ -9,7 +9,10 @@
 //! (`stop_fov`: a cone from 4 m back along each view's direction), and with
 //! the most rays without a return a cloud may list on top (`stop_fov_dark`:
 //! 1024 cones of 0.6 degrees on a 32 x 32 grid across that cone, the worst
-//! case of `guard::no_return`'s search).
+//! case of `guard::no_return`'s search). Each decision is measured in two
+//! poses: over the larger sphere (a contact) and near but clear (the first
+//! pose on the way from `FAR` to `OVER` whose clearance is under 0.25 m but
+//! not a stop).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use shroud_core::guard::{
@@ -67,8 +70,23 @@ fn guard(c: &mut Criterion) {
     views(c, &points, &file);
 }
 
+/// The first pose on the straight joint-space way from `FAR` to `OVER` whose
+/// clearance from the top view is under 0.25 m and above the stop distance.
+fn near_but_clear(envelope: &Envelope, file: &ArmFile) -> [f64; 6] {
+    for step in 0..=200 {
+        let t = step as f64 / 200.0;
+        let q: [f64; 6] = std::array::from_fn(|i| FAR[i] + t * (OVER[i] - FAR[i]));
+        let pose = file.arm.forward(&q).expect("valid joint values");
+        let report = check_arm(envelope, &pose, &file.guard).expect("valid pose");
+        if !report.stop && report.min_clearance < 0.25 {
+            return q;
+        }
+    }
+    panic!("no near-but-clear pose between FAR and OVER on this scene");
+}
+
 /// The decision over 1 and 3 views, in the pose over the larger sphere (on
-/// today's scene a contact: clearance 0, so the searches end early).
+/// today's scene a contact: clearance 0) and in a pose near but clear of it.
 fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
     let directions = [[0.0, 0.0, -1.0], [0.0, -1.0, 0.0], [-1.0, 0.0, 0.0]];
     let inputs: Vec<SurrogateInput> = directions
@@ -90,7 +108,8 @@ fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
             }
         })
         .collect();
-    let pose = file.arm.forward(&OVER).expect("valid joint values");
+    let near_clear = near_but_clear(&inputs[0].envelope, file);
+    let poses = [("", OVER), ("_near_clear", near_clear)];
     let links: Vec<String> = file.arm.links().iter().map(|l| l.name.clone()).collect();
     let mut group = c.benchmark_group("guard_views");
     let cases = [
@@ -100,7 +119,11 @@ fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
         ("stop_fov_dark", UnobservedPolicy::Stop, true, true),
     ];
     for count in [1, 3] {
-        for (label, unobserved, fov, dark) in cases {
+        for ((label, unobserved, fov, dark), (suffix, q)) in cases
+            .into_iter()
+            .flat_map(|case| poses.map(|pose| (case, pose)))
+        {
+            let pose = file.arm.forward(&q).expect("valid joint values");
             let policy = GuardPolicy {
                 max_skew_ns: u64::MAX,
                 unobserved,
@@ -127,11 +150,12 @@ fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
             }
             let decision = guard.decide(&pose.shapes, 0).expect("valid pose");
             eprintln!(
-                "{count} view(s), {label}: {:?}, min clearance {:.4}",
+                "{count} view(s), {label}{suffix}: {:?}, min clearance {:.4}",
                 decision.verdict,
                 decision.report.as_ref().map_or(0.0, |r| r.min_clearance)
             );
-            group.bench_function(format!("decide_50_spheres_{count}_views_{label}"), |b| {
+            let name = format!("decide_50_spheres_{count}_views_{label}{suffix}");
+            group.bench_function(name, |b| {
                 b.iter(|| guard.decide(black_box(&pose.shapes), 0))
             });
         }
