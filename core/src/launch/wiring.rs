@@ -237,11 +237,6 @@ impl NodeSpec {
         }
         Ok(args)
     }
-
-    /// The options the ports set, which `settings` may not set again.
-    pub fn port_flags(&self) -> impl Iterator<Item = &'static str> {
-        self.kind.ports().iter().map(|p| p.flag)
-    }
 }
 
 /// Who feeds an input.
@@ -276,79 +271,80 @@ impl LaunchFile {
     /// Every input with each of its sources, in the file's order of nodes.
     pub fn edges(&self) -> Result<Vec<Edge<'_>>, LaunchError> {
         let external = self.external_streams()?;
-        let producers = self.producers(&external)?;
+        // Each node's ports are checked and resolved once.
+        let wired = self
+            .nodes
+            .iter()
+            .map(NodeSpec::wires)
+            .collect::<Result<Vec<_>, _>>()?;
+        let producers = producers(&wired, &external)?;
         let mut edges = Vec::new();
-        for node in &self.nodes {
-            for wire in node.wires()? {
-                if wire.port.direction != Direction::Input {
-                    continue;
-                }
-                let mut sources: Vec<Source<'_>> = producers
-                    .get(&wire.stream)
-                    .map(|list| list.iter().map(|n| Source::Node(n)).collect())
-                    .unwrap_or_default();
-                if external.contains(&wire.stream) {
-                    sources.push(Source::External);
-                }
-                if sources.is_empty() {
-                    return Err(node.error(format!(
-                        "input {} has no producer: no node of this file writes it and \
-                         `external` does not list it",
-                        wire.stream
-                    )));
-                }
-                edges.extend(sources.into_iter().map(|from| Edge {
-                    from,
-                    to: node,
-                    stream: wire.stream.clone(),
-                }));
+        for wire in wired.into_iter().flatten() {
+            let node = wire.node;
+            if wire.port.direction != Direction::Input {
+                continue;
             }
+            let mut sources: Vec<Source<'_>> = producers
+                .get(&wire.stream)
+                .map(|list| list.iter().map(|n| Source::Node(n)).collect())
+                .unwrap_or_default();
+            if external.contains(&wire.stream) {
+                sources.push(Source::External);
+            }
+            if sources.is_empty() {
+                return Err(node.error(format!(
+                    "input {} has no producer: no node of this file writes it and \
+                     `external` does not list it",
+                    wire.stream
+                )));
+            }
+            edges.extend(sources.into_iter().map(|from| Edge {
+                from,
+                to: node,
+                stream: wire.stream.clone(),
+            }));
         }
         Ok(edges)
     }
+}
 
-    /// Who writes each stream: one node, except blend commands, which may
-    /// come from several senders (pages, panels, `shroud blend-cmd` from
-    /// outside the file).
-    fn producers(
-        &self,
-        external: &[Stream],
-    ) -> Result<BTreeMap<Stream, Vec<&NodeSpec>>, LaunchError> {
-        let mut producers: BTreeMap<Stream, Vec<&NodeSpec>> = BTreeMap::new();
-        for node in &self.nodes {
-            for wire in node.wires()? {
-                if wire.port.direction != Direction::Output {
-                    continue;
-                }
-                let writers = producers.entry(wire.stream.clone()).or_default();
-                writers.push(node);
-                if wire.port.topic == TopicKind::Blend {
-                    continue;
-                }
-                if writers.len() > 1 {
-                    return Err(node.error(format!(
-                        "{} is also written by node {:?}: one producer per stream",
-                        wire.stream, writers[0].name
-                    )));
-                }
-                if external.contains(&wire.stream) {
-                    return Err(node.error(format!(
-                        "{} is written here and listed in external",
-                        wire.stream
-                    )));
-                }
-            }
+/// Who writes each stream: one node, except blend commands, which may come
+/// from several senders (pages, panels, `shroud blend-cmd` from outside the
+/// file).
+fn producers<'a>(
+    wired: &[Vec<Wire<'a>>],
+    external: &[Stream],
+) -> Result<BTreeMap<Stream, Vec<&'a NodeSpec>>, LaunchError> {
+    let mut producers: BTreeMap<Stream, Vec<&'a NodeSpec>> = BTreeMap::new();
+    for wire in wired.iter().flatten() {
+        let node = wire.node;
+        if wire.port.direction != Direction::Output {
+            continue;
         }
-        Ok(producers)
+        let writers = producers.entry(wire.stream.clone()).or_default();
+        writers.push(node);
+        if wire.port.topic == TopicKind::Blend {
+            continue;
+        }
+        if writers.len() > 1 {
+            return Err(node.error(format!(
+                "{} is also written by node {:?}: one producer per stream",
+                wire.stream, writers[0].name
+            )));
+        }
+        if external.contains(&wire.stream) {
+            return Err(node.error(format!(
+                "{} is written here and listed in external",
+                wire.stream
+            )));
+        }
     }
+    Ok(producers)
 }
 
 /// The graph's checks: ports, shared options, one producer per stream (blend
 /// commands may have several, `external` among them), a producer for every
 /// input.
 pub fn check_graph(file: &LaunchFile) -> Result<(), LaunchError> {
-    for node in &file.nodes {
-        node.wires()?;
-    }
     file.edges().map(|_| ())
 }
