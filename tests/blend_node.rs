@@ -5,8 +5,8 @@
 mod common;
 
 use common::{assert_all_gone, free_port, hub, wait_sources, wiring, Proc};
-use shroud_core::blend::BlendCommand;
-use shroud_core::message::{BlendCommandMessage, NodeStatusMessage};
+use shroud_msg::{BlendCommandMessage, NodeStatusMessage};
+use shroud_shapes::blend::BlendCommand;
 use std::time::{Duration, Instant};
 use zenoh::Wait;
 

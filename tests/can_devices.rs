@@ -13,7 +13,7 @@ use common::device_rig::{
     clouds, expect_certified_surrogate, fit_from_above, label, path, status_until, Rig, LONG,
 };
 use common::Proc;
-use shroud_core::message::{CloudMessage, NodeStatusMessage};
+use shroud_msg::{CloudMessage, NodeStatusMessage};
 use std::collections::BTreeMap;
 use std::time::Duration;
 
@@ -130,7 +130,7 @@ fn can_a_cycle_that_loses_a_frame_is_dropped_whole_and_counted() {
     assert!(counter(&status, "lost_frame") >= 1, "{status:?}");
     // Every published cloud is sound: each channel holds a value per point,
     // and the static clusters are all there (that no cycle with a hole is
-    // published is proved frame by frame in core's cycle tests).
+    // published is proved frame by frame in `shroud-drivers`' cycle tests).
     let got = clouds(&cloud_inbox, 10, &node);
     for cloud in &got {
         channels(cloud);

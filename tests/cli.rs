@@ -203,7 +203,7 @@ fn pcd_clouds_are_read_and_written() {
     // A PCL-style organised cloud (4 x 3, binary, `_` padding) with 3 NaN points.
     let fixture = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/core/tests/data/pcd/organised_nan_binary.pcd"
+        "/libraries/shapes/tests/data/pcd/organised_nan_binary.pcd"
     );
     let out = shroud(&["fit", fixture, "--grid", "3x3"]);
     let (stdout, stderr) = text(&out);
@@ -541,7 +541,7 @@ fn smooth_fits_a_radial_function_over_the_sphere() {
 
 /// Points on the sphere of radius `r` around `c`, by a Fibonacci lattice.
 fn sphere_xyz(n: usize, c: [f64; 3], r: f64) -> String {
-    shroud_core::math::fibonacci_sphere(n)
+    shroud_geometry::math::fibonacci_sphere(n)
         .iter()
         .map(|d| {
             let p = glam::DVec3::from_array(c) + r * *d;

@@ -12,7 +12,7 @@ use common::device_rig::{
     LONG, TILTING,
 };
 use common::Proc;
-use shroud_core::message::CloudMessage;
+use shroud_msg::CloudMessage;
 use std::path::Path;
 use std::time::Duration;
 
@@ -292,7 +292,7 @@ fn assert_on_slope(clouds: &[CloudMessage]) {
 }
 
 /// Logs the node's count of readings dropped for their lateness.
-fn log_late_readings(status: &shroud_core::message::NodeStatusMessage) {
+fn log_late_readings(status: &shroud_msg::NodeStatusMessage) {
     eprintln!(
         "readings dropped: {} without a time bound, {} beyond the largest error",
         status.counter("readings_late_unbounded"),
@@ -352,7 +352,7 @@ fn devices_a_panning_tfmini_placed_by_joint_states_draws_the_slope() {
     args.extend(PAN_MOUNT);
     let _emulator = rig.emulator("tfmini-plus", &args);
     // The unit's controller: its angle as joint states, 200 Hz.
-    let profile: shroud_core::ingest::assembly::SweepProfile = PANNING.parse().unwrap();
+    let profile: shroud_drivers::assembly::SweepProfile = PANNING.parse().unwrap();
     let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     let publisher = {
         let key = format!("shroud/{}/joints/mount", rig.namespace);
@@ -362,7 +362,7 @@ fn devices_a_panning_tfmini_placed_by_joint_states_draws_the_slope() {
             let mut sequence = 0;
             while !stop.load(std::sync::atomic::Ordering::Relaxed) {
                 let now = common::unix_ns();
-                let msg = shroud_core::message::JointStateMessage::new(
+                let msg = shroud_msg::JointStateMessage::new(
                     now,
                     sequence,
                     "pan-unit",

@@ -143,3 +143,56 @@ fn anchors_follow_githubs_rule() {
     assert_eq!(links(text), vec!["w.md#a", "v.md \"title\""]);
     assert!(anchors(text).contains("a") && !anchors(text).contains("not-a-heading"));
 }
+
+/// The crate graph `docs/design.md` draws, from the workspace's manifests:
+/// one Mermaid edge per normal dependency between the library crates, the
+/// simulator and the nodes (the binary, the fuzz targets and dev-dependencies
+/// left out).
+fn crate_graph() -> String {
+    let output = std::process::Command::new(env!("CARGO"))
+        .args([
+            "metadata",
+            "--no-deps",
+            "--format-version",
+            "1",
+            "--offline",
+        ])
+        .current_dir(ROOT)
+        .output()
+        .expect("cargo metadata runs");
+    assert!(output.status.success(), "cargo metadata failed");
+    let metadata: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let packages = metadata["packages"].as_array().unwrap();
+    let drawn = |name: &str| name.starts_with("shroud-") && name != "shroud-fuzz";
+    let mut edges = BTreeSet::new();
+    for package in packages {
+        let name = package["name"].as_str().unwrap();
+        if !drawn(name) {
+            continue;
+        }
+        for dependency in package["dependencies"].as_array().unwrap() {
+            let target = dependency["name"].as_str().unwrap();
+            if drawn(target) && dependency["kind"].is_null() {
+                let id = |crate_name: &str| crate_name.replace('-', "_");
+                edges.insert(format!("    {} --> {}", id(name), id(target)));
+            }
+        }
+    }
+    let mut text = String::from("```mermaid\ngraph TD\n");
+    for edge in edges {
+        text.push_str(&edge);
+        text.push('\n');
+    }
+    text.push_str("```\n");
+    text
+}
+
+#[test]
+fn the_crate_graph_in_the_design_chapter_is_current() {
+    let graph = crate_graph();
+    let design = std::fs::read_to_string(Path::new(ROOT).join("docs/design.md")).unwrap();
+    assert!(
+        design.contains(&graph),
+        "docs/design.md must embed the crate graph as it is now:\n{graph}"
+    );
+}

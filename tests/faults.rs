@@ -34,7 +34,7 @@ use feeder::Feeder;
 use flood::{Flood, BAD};
 use heard::{median, Heard};
 use outputs::{Counts, Outputs};
-use shroud_core::message::{GuardVerdict, NodeStatusMessage};
+use shroud_msg::{GuardVerdict, NodeStatusMessage};
 use std::sync::{Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 use zenoh::Wait;

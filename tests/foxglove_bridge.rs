@@ -11,7 +11,7 @@ mod common;
 
 use common::status_board::StatusBoard;
 use common::{hub_on_free_port, wiring, Proc};
-use shroud_core::message::{BlendCommandMessage, CloudMessage};
+use shroud_msg::{BlendCommandMessage, CloudMessage};
 use std::process::Command;
 use std::time::{Duration, Instant};
 use zenoh::Wait;

@@ -4,8 +4,9 @@
 mod common;
 
 use common::{alive, assert_all_gone, free_port, hub, hub_on_free_port, wiring, Proc};
-use shroud_core::message::{CloudMessage, NodeStatusMessage, SurrogateMessage};
-use shroud_core::query::{Classify, PointClass, SurrogateView};
+use shroud_msg::{CloudMessage, NodeStatusMessage, SurrogateMessage};
+use shroud_surrogate::query::{Classify, PointClass, SurrogateView};
+use shroud_surrogate::SurrogateWire;
 use std::collections::HashMap;
 use std::time::{Duration, Instant};
 use zenoh::Wait;

@@ -11,8 +11,9 @@ use common::{
     alive, free_port, hub, hub_on_free_port, inbox, joint_spread, peer_session, wait_moving,
     wiring, Inbox, Proc,
 };
-use shroud_core::message::{CloudMessage, NodeStatusMessage, SurrogateMessage};
-use shroud_core::surrogate::{fit_surrogate, FitOptions, Sides};
+use shroud_msg::{CloudMessage, NodeStatusMessage, SurrogateMessage};
+use shroud_surrogate::SurrogateWire;
+use shroud_surrogate::{fit_surrogate, FitOptions, Sides};
 use std::io::{Read, Write};
 use std::net::{TcpListener, TcpStream};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -219,8 +220,7 @@ fn a_cloud_stamped_an_hour_ahead_is_a_counted_fault_not_a_fresh_surrogate() {
     let seen: Vec<_> = verdicts.drain().collect();
     assert!(!seen.is_empty(), "the guard answers every joint state");
     for s in &seen {
-        let v =
-            shroud_core::message::CollisionMessage::from_bytes(&s.payload().to_bytes()).unwrap();
+        let v = shroud_msg::CollisionMessage::from_bytes(&s.payload().to_bytes()).unwrap();
         assert!(v.stop, "a skewed surrogate never clears: {v:?}");
     }
     // Honest stamps: the same pipeline now clears the far sheet.
@@ -234,8 +234,7 @@ fn a_cloud_stamped_an_hour_ahead_is_a_counted_fault_not_a_fresh_surrogate() {
         put_sheet(&session, ns, common::unix_ns(), sequence);
         sequence += 1;
         if let Ok(Some(s)) = verdicts.recv_timeout(Duration::from_millis(100)) {
-            let v = shroud_core::message::CollisionMessage::from_bytes(&s.payload().to_bytes())
-                .unwrap();
+            let v = shroud_msg::CollisionMessage::from_bytes(&s.payload().to_bytes()).unwrap();
             if !v.stop {
                 assert!(v.surrogate_age_ns < 1_000_000_000, "{v:?}");
                 break;
@@ -372,30 +371,24 @@ fn unusable_joint_states_are_answered_with_a_stop_and_counted() {
     let guard = start(&guard_args("far"), &wiring(&endpoint, ns));
     let key = format!("shroud/{ns}/joints/demo_arm");
     let wrong_names =
-        shroud_core::message::JointStateMessage::new(5, 9, "demo_arm", vec!["a".into()], vec![0.0])
+        shroud_msg::JointStateMessage::new(5, 9, "demo_arm", vec!["a".into()], vec![0.0])
             .to_bytes()
             .unwrap();
     // Another arm's joint state, and an encoder glitch past a joint's limits
     // (the shoulder's are [-2, 2]): neither is a pose to judge.
-    let names = |file: &shroud_core::guard::ArmFile| {
+    let names = |file: &shroud_guard::ArmFile| {
         file.arm
             .actuated_joints()
             .map(|j| j.name().to_string())
             .collect::<Vec<_>>()
     };
     let file =
-        shroud_core::guard::ArmFile::from_toml_str(&std::fs::read_to_string(ARM_FILE).unwrap())
+        shroud_guard::ArmFile::from_toml_str(&std::fs::read_to_string(ARM_FILE).unwrap()).unwrap();
+    let other_arm =
+        shroud_msg::JointStateMessage::new(5, 10, "other_arm", names(&file), vec![0.0; 6])
+            .to_bytes()
             .unwrap();
-    let other_arm = shroud_core::message::JointStateMessage::new(
-        5,
-        10,
-        "other_arm",
-        names(&file),
-        vec![0.0; 6],
-    )
-    .to_bytes()
-    .unwrap();
-    let glitch = shroud_core::message::JointStateMessage::new(
+    let glitch = shroud_msg::JointStateMessage::new(
         5,
         11,
         "demo_arm",
@@ -416,8 +409,7 @@ fn unusable_joint_states_are_answered_with_a_stop_and_counted() {
         session.put(&key, other_arm.clone()).wait().unwrap();
         session.put(&key, glitch.clone()).wait().unwrap();
         while let Ok(Some(s)) = verdicts.recv_timeout(Duration::from_millis(100)) {
-            let v = shroud_core::message::CollisionMessage::from_bytes(&s.payload().to_bytes())
-                .unwrap();
+            let v = shroud_msg::CollisionMessage::from_bytes(&s.payload().to_bytes()).unwrap();
             assert!(v.stop, "never clear: {v:?}");
             if v.joints_sequence == u64::MAX {
                 assert!(v.reason.contains("undecodable joint state"), "{}", v.reason);
@@ -447,22 +439,15 @@ fn unusable_joint_states_are_answered_with_a_stop_and_counted() {
 /// The demo arm's joint state at `q`, as its controller would send it.
 fn joint_state(sequence: u64, q: &[f64]) -> Vec<u8> {
     let file =
-        shroud_core::guard::ArmFile::from_toml_str(&std::fs::read_to_string(ARM_FILE).unwrap())
-            .unwrap();
+        shroud_guard::ArmFile::from_toml_str(&std::fs::read_to_string(ARM_FILE).unwrap()).unwrap();
     let names = file
         .arm
         .actuated_joints()
         .map(|j| j.name().to_string())
         .collect();
-    shroud_core::message::JointStateMessage::new(
-        common::unix_ns(),
-        sequence,
-        "demo_arm",
-        names,
-        q.to_vec(),
-    )
-    .to_bytes()
-    .unwrap()
+    shroud_msg::JointStateMessage::new(common::unix_ns(), sequence, "demo_arm", names, q.to_vec())
+        .to_bytes()
+        .unwrap()
 }
 
 /// Sends joint states at `q` every 20 ms for `window` and returns the verdicts
@@ -474,7 +459,7 @@ fn verdicts_for(
     q: &[f64],
     first: u64,
     window: Duration,
-) -> Vec<shroud_core::message::CollisionMessage> {
+) -> Vec<shroud_msg::CollisionMessage> {
     let key = format!("shroud/{ns}/joints/demo_arm");
     let start = Instant::now();
     let mut sequence = first;
@@ -483,8 +468,7 @@ fn verdicts_for(
         session.put(&key, joint_state(sequence, q)).wait().unwrap();
         sequence += 1;
         while let Ok(Some(s)) = verdicts.recv_timeout(Duration::from_millis(20)) {
-            let v = shroud_core::message::CollisionMessage::from_bytes(&s.payload().to_bytes())
-                .unwrap();
+            let v = shroud_msg::CollisionMessage::from_bytes(&s.payload().to_bytes()).unwrap();
             if (first..sequence).contains(&v.joints_sequence) {
                 out.push(v);
             }
@@ -573,7 +557,7 @@ fn a_guard_frozen_while_a_surrogate_arrives_says_stale_when_it_wakes() {
     for v in &woken {
         assert_eq!(
             v.verdict,
-            shroud_core::message::GuardVerdict::Stale,
+            shroud_msg::GuardVerdict::Stale,
             "a surrogate that waited in a frozen guard is not fresh: {v:?}"
         );
     }
@@ -656,10 +640,6 @@ fn two_fit_nodes_on_different_clouds_stop_for_an_obstacle_one_of_them_saw() {
             break v;
         }
     };
-    assert_eq!(
-        seen.verdict,
-        shroud_core::message::GuardVerdict::Stop,
-        "{seen:?}"
-    );
+    assert_eq!(seen.verdict, shroud_msg::GuardVerdict::Stop, "{seen:?}");
     assert!(seen.min_clearance < seen.stop_distance, "{seen:?}");
 }

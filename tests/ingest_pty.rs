@@ -3,9 +3,9 @@
 //! replugging them, candump replay from a file, the in-memory bus, and a
 //! SocketCAN open (skipped when the kernel has no CAN interface).
 
-use shroud_core::ingest::can::{CanFrame, CanSensorConfig};
-use shroud_core::ingest::serial::{PointEncoding, SerialEncoder};
-use shroud_core::ingest::{ErrorKind, Scan};
+use shroud_drivers::can::{CanFrame, CanSensorConfig};
+use shroud_drivers::serial::{PointEncoding, SerialEncoder};
+use shroud_drivers::{ErrorKind, Scan};
 use shroud_nodes::cli::sensor_sim::{run_sensor_sim_with, SensorSimArgs, SimFormat};
 use shroud_nodes::ingest::pty::Pty;
 use shroud_nodes::ingest::sim::{CandumpWriter, ScanSink, SerialSensorWriter, SlcanWriter};

@@ -6,7 +6,8 @@ mod common;
 
 use common::launched::{endpoint_of, pids_of, write_launch};
 use common::{alive, assert_all_gone, client_of, joint_spread, KillOnDrop, Proc, Reaped};
-use shroud_core::message::{CollisionMessage, NodeStatusMessage, SurrogateMessage};
+use shroud_msg::{CollisionMessage, NodeStatusMessage, SurrogateMessage};
+use shroud_surrogate::SurrogateWire;
 use std::io::{BufRead, BufReader};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -222,7 +223,7 @@ fn collision(sample: &zenoh::sample::Sample) -> CollisionMessage {
 /// The sheet of points at height `z` as a cloud message.
 fn sheet(z: f32, sequence: u64) -> Vec<u8> {
     let points = common::sheet(z);
-    shroud_core::message::CloudMessage::new(
+    shroud_msg::CloudMessage::new(
         common::unix_ns(),
         sequence,
         "test",

@@ -1,4 +1,4 @@
-//! The Python example of `core/FORMATS.md`, run as documented against real nodes:
+//! The Python example of `docs/formats.md`, run as documented against real nodes:
 //! proves that a consumer in another language decodes what the nodes send with
 //! the documented layout. The test installs its own Python environment (pinned
 //! eclipse-zenoh, msgpack, numpy from PyPI) under the target directory.
@@ -6,7 +6,7 @@
 mod common;
 
 use common::{free_port, hub, wiring, Proc};
-use shroud_core::message::CloudMessage;
+use shroud_msg::CloudMessage;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -20,10 +20,10 @@ fn python() -> PathBuf {
     common::python::python_with("pyenv", &PACKAGES)
 }
 
-/// The code block between the `marker` markers of FORMATS.md.
+/// The code block between the `marker` markers of `docs/formats.md`.
 fn documented_example(marker: &str) -> String {
     let doc =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/core/FORMATS.md")).unwrap();
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/formats.md")).unwrap();
     let start = doc
         .find(&format!("<!-- {marker}:start -->"))
         .expect("start marker");

@@ -10,7 +10,8 @@ mod common;
 
 use common::status_board::StatusBoard;
 use common::{hub_on_free_port, inbox, wiring, Proc};
-use shroud_core::message::{CloudMessage, SurrogateMessage};
+use shroud_msg::{CloudMessage, SurrogateMessage};
+use shroud_surrogate::SurrogateWire;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::{Command, Output};

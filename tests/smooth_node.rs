@@ -5,7 +5,7 @@
 mod common;
 
 use common::{assert_all_gone, free_port, hub, wiring, Proc};
-use shroud_core::message::{CloudMessage, NodeStatusMessage, SmoothPatchesMessage};
+use shroud_msg::{CloudMessage, NodeStatusMessage, SmoothPatchesMessage};
 use std::time::{Duration, Instant};
 use zenoh::Wait;
 
@@ -139,7 +139,7 @@ fn smooth_node_fits_a_closed_surface_in_space() {
         "node", "smooth", "--input", "ball", "--lambda", "0", "--mesh",
     ];
     let mut node = Proc::start(&[&args[..], &[mesh.to_str().unwrap()], &w].concat());
-    let ball: Vec<[f32; 3]> = shroud_core::math::fibonacci_sphere(6000)
+    let ball: Vec<[f32; 3]> = shroud_geometry::math::fibonacci_sphere(6000)
         .iter()
         .map(|d| (glam::DVec3::splat(0.5) + 0.7 * *d).as_vec3().to_array())
         .collect();

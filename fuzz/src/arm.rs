@@ -3,7 +3,7 @@
 //! actuated joint.
 
 use crate::check::named;
-use shroud_core::guard::{ArmModel, GuardError};
+use shroud_guard::{ArmModel, GuardError};
 
 pub fn poses(arm: &ArmModel) {
     let q: Vec<f64> = arm

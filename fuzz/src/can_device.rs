@@ -6,8 +6,8 @@
 //! step, the driver receives the frame (stamped on arrival), then is polled.
 
 use crate::can_records::{record as frame_record, records};
-use shroud_core::ingest::can_device::{CanDeviceDriver, CanDriverOutput, FrameClock, TimedFrame};
-use shroud_core::ingest::device::HostTime;
+use shroud_drivers::can_device::{CanDeviceDriver, CanDriverOutput, FrameClock, TimedFrame};
+use shroud_drivers::device::HostTime;
 use shroud_sim::can_device::{can_emulator, CanEmulatorOptions, CanWorld};
 
 const ORIGIN: HostTime = HostTime::new(1_000_000_000, 1_700_000_000_000_000_000);
@@ -37,7 +37,7 @@ pub fn run(make: MakeDriver, data: &[u8]) {
     out.drain(..).for_each(|o| check(&o, now));
 }
 
-fn timed(frame: shroud_core::ingest::can::CanFrame, now: HostTime) -> TimedFrame {
+fn timed(frame: shroud_drivers::can::CanFrame, now: HostTime) -> TimedFrame {
     TimedFrame {
         frame,
         stamp_ns: now.unix_ns,

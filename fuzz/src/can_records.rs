@@ -9,7 +9,7 @@
 //! | 5     | milliseconds since the previous frame                          |
 //! | 6..14 | data bytes (the first `length` are used)                       |
 
-use shroud_core::ingest::can::{CanFrame, MAX_EXTENDED_ID, MAX_STANDARD_ID};
+use shroud_drivers::can::{CanFrame, MAX_EXTENDED_ID, MAX_STANDARD_ID};
 
 /// Bytes of one record.
 pub const RECORD_LEN: usize = 14;

@@ -2,7 +2,7 @@
 //! how a stream is chunked, errors whose text names the problem, and heap use
 //! bounded by the input's size.
 
-use shroud_core::metrics;
+use shroud_graph::metrics;
 use std::fmt::{Debug, Display};
 
 /// Heap a decode may allocate beyond [`ALLOCATION_PER_INPUT_BYTE`] per input

@@ -38,8 +38,8 @@ macro_rules! fuzz_binary {
         /// Counts heap bytes so that each input's allocations are checked
         /// against its size ([`shroud_fuzz::check::bounded_allocation`]).
         #[global_allocator]
-        static ALLOCATOR: shroud_core::metrics::CountingAllocator =
-            shroud_core::metrics::CountingAllocator;
+        static ALLOCATOR: shroud_graph::metrics::CountingAllocator =
+            shroud_graph::metrics::CountingAllocator;
 
         libfuzzer_sys::fuzz_target!(|data: &[u8]| $crate::fuzz(env!("CARGO_BIN_NAME"), data));
     };

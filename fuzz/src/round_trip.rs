@@ -2,7 +2,7 @@
 //! writer, must read back as the same value.
 
 use crate::check::same;
-use shroud_core::format::PlyCloud;
+use shroud_shapes::format::PlyCloud;
 
 /// `cloud`, written by `write` and read by `parse`, must give the same points
 /// and intensity (the count of skipped invalid points is the reader's, not

@@ -8,7 +8,7 @@ pub fn stream(chunking: u8, bytes: &[u8]) -> Vec<u8> {
     out
 }
 
-use shroud_core::surrogate::{fit_surrogate, FitOptions, Sides, Surrogate};
+use shroud_surrogate::{fit_surrogate, FitOptions, Sides, Surrogate};
 
 /// A small surrogate with both sides and a trim mask, fitted to a wavy
 /// height field with a missing corner (so that trimming removes cells).

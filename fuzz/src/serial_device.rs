@@ -8,7 +8,7 @@
 //! driver is a deterministic state machine of its input and clock, so a
 //! recorded device side replays the recorded session.
 
-use shroud_core::ingest::device::{DeviceDriver, DriverOutput, HostTime, ReadWindow, StampBound};
+use shroud_drivers::device::{DeviceDriver, DriverOutput, HostTime, ReadWindow, StampBound};
 use shroud_sim::device::{emulator, EmulatorOptions, RayReturn, RaySource};
 
 /// Where the clock starts (monotonic and Unix).

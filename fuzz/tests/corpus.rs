@@ -3,8 +3,8 @@
 //! the fuzzer once found fails here. Also checks that the registry, the
 //! fuzzer binaries and the corpus folders agree.
 
-use shroud_core::metrics::CountingAllocator;
 use shroud_fuzz::TARGETS;
+use shroud_graph::metrics::CountingAllocator;
 use std::collections::BTreeSet;
 use std::fs;
 use std::panic::{catch_unwind, AssertUnwindSafe};

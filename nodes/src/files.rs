@@ -1,7 +1,7 @@
 //! Reading and writing the files the CLI works with, with errors that name the file.
 
 use anyhow::{bail, Context, Result};
-use shroud_core::format::{self, CloudFormat, PcdEncoding};
+use shroud_shapes::format::{self, CloudFormat, PcdEncoding};
 use std::path::Path;
 
 /// Reads a point cloud (PLY ascii/binary, PCD ascii/binary/binary_compressed,
@@ -23,7 +23,7 @@ pub fn read_cloud(path: &Path) -> Result<Vec<[f32; 3]>> {
             cloud.points.len()
         );
     }
-    shroud_core::cloud::validate_points(&cloud.points)
+    shroud_geometry::cloud::validate_points(&cloud.points)
         .with_context(|| format!("bad point cloud {}", path.display()))?;
     Ok(cloud.points)
 }
@@ -67,7 +67,7 @@ pub fn write(path: &Path, bytes: &[u8]) -> Result<()> {
 }
 
 /// Reads a surrogate written by `shroud fit` (`.json` or the binary `.shrd`).
-pub fn read_surrogate(path: &Path) -> Result<shroud_core::surrogate::Surrogate> {
+pub fn read_surrogate(path: &Path) -> Result<shroud_surrogate::Surrogate> {
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
     let parsed = if is_json(path, &bytes) {
         format::surrogate_from_json(&bytes)
@@ -78,7 +78,7 @@ pub fn read_surrogate(path: &Path) -> Result<shroud_core::surrogate::Surrogate> 
 }
 
 /// Writes a surrogate as JSON (`.json`) or compact binary (anything else).
-pub fn write_surrogate(path: &Path, surrogate: &shroud_core::surrogate::Surrogate) -> Result<()> {
+pub fn write_surrogate(path: &Path, surrogate: &shroud_surrogate::Surrogate) -> Result<()> {
     let bytes = if path.extension().is_some_and(|e| e == "json") {
         format::surrogate_to_json(surrogate)
     } else {

@@ -1,10 +1,12 @@
 //! The shroud command line and nodes: thin wrappers that parse arguments, read
-//! and write files, move messages over zenoh, call `shroud-core`, and print what
+//! and write files, move messages over zenoh, call the library crates (`libraries/`), and print what
 //! happened.
 
 pub mod args;
+mod arm_file;
 pub mod bench;
 pub mod cli;
+pub mod exit;
 pub mod files;
 pub mod ingest;
 pub mod introspect;
@@ -12,5 +14,6 @@ pub mod launch;
 pub mod node;
 pub mod parse;
 pub mod recording;
+pub mod runtime;
 pub mod to_foxglove;
 pub mod transport;

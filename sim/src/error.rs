@@ -82,7 +82,7 @@ pub enum SceneError {
         vertices: usize,
     },
     /// A `scan-mesh` scene was used before its mesh was attached.
-    #[error("the scan-mesh scene has no mesh yet: read `{path}` (e.g. with shroud_core::format::parse_triangle_mesh) and attach it with Scene::attach_mesh")]
+    #[error("the scan-mesh scene has no mesh yet: read `{path}` (e.g. with shroud_shapes::format::parse_triangle_mesh) and attach it with Scene::attach_mesh")]
     MeshNotLoaded { path: String },
     /// `Scene::by_name` was asked for a scene that needs a mesh.
     #[error("scene `{name}` is built from a triangle mesh: use Scene::scan_mesh, or deserialize it and attach the mesh")]

@@ -24,10 +24,12 @@ mod sampling;
 pub mod scanned_parts;
 mod scanner;
 mod scene;
+mod slcan_adapter;
 pub mod soundness;
 mod table_objects;
 mod table_top;
 mod terrain;
+pub mod world;
 
 pub use error::{SceneError, MAX_POINTS};
 pub use mesh_scene::{DEFAULT_CYLINDER_SEGMENTS, DEFAULT_TERRAIN_CELLS, MAX_CYLINDER_SEGMENTS};
@@ -38,6 +40,7 @@ pub use scanner::{
     TableTopScan, TerrainScan,
 };
 pub use scene::Scene;
+pub use slcan_adapter::SlcanAdapter;
 pub use table_objects::{TableBox, TableCylinder};
 pub use table_top::TableTop;
 pub use terrain::{Cliff, Hill, Terrain};

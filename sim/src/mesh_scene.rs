@@ -7,7 +7,7 @@ use crate::error::{SceneError, MAX_POINTS};
 use crate::table_objects::{TableBox, TableCylinder};
 use crate::table_top::TableTop;
 use crate::terrain::Terrain;
-use shroud_core::format::TriangleMesh;
+use shroud_shapes::format::TriangleMesh;
 use std::f64::consts::TAU;
 
 /// Default number of side segments of a table cylinder's mesh (the polygon is

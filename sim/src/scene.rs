@@ -8,8 +8,8 @@ use crate::scanner::{
 use crate::table_top::TableTop;
 use crate::terrain::Terrain;
 use serde::{Deserialize, Serialize};
-use shroud_core::format::TriangleMesh;
-use shroud_core::message::{FieldOfView, NoReturn};
+use shroud_msg::{FieldOfView, NoReturn};
+use shroud_shapes::format::TriangleMesh;
 use std::str::FromStr;
 
 /// Any scene. Serialized with a `"kind"` tag holding the scene's name, e.g.

@@ -3,7 +3,7 @@
 //! and meshes read back from files. `scan_timing` (ignored) measures it:
 //! `cargo test --release -p shroud-sim --test scanner -- --ignored --nocapture`.
 
-use shroud_core::format::{parse_triangle_mesh, TriangleMesh};
+use shroud_shapes::format::{parse_triangle_mesh, TriangleMesh};
 use shroud_sim::{
     Bvh, LissajousPath, RangeScanner, ScanPose, ScanResolution, Scene, SceneError, TableBox,
     TableTop, TableTopScan, TerrainScan,
@@ -670,7 +670,7 @@ fn rays_without_return_are_stated_as_cones() {
         .expect("rays beyond the square return nothing");
     let fov = scanner.field_of_view(0.0).unwrap();
     assert_eq!(stated.apex, fov.apex);
-    assert!(stated.cones.len() <= shroud_core::message::MAX_DARK_CONES);
+    assert!(stated.cones.len() <= shroud_msg::MAX_DARK_CONES);
     let covered = |p: [f64; 3]| {
         let d: [f64; 3] = std::array::from_fn(|k| p[k] - stated.apex[k]);
         let norm = d.iter().map(|x| x * x).sum::<f64>().sqrt();

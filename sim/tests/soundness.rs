@@ -15,7 +15,7 @@
 //!   solids are missed, and nothing else (the control).
 //! - The negative control: a guard that ignores unseen space is caught.
 
-use shroud_core::guard::UnobservedPolicy;
+use shroud_guard::UnobservedPolicy;
 use shroud_sim::soundness::{minimise, run, FindingClass, SoundnessParams, SoundnessReport};
 
 /// Scenes per run (a few seconds each in the test profile).

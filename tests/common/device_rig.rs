@@ -3,7 +3,8 @@
 //! the emulator and the nodes and wait for what they publish.
 
 use super::{hub_on_free_port, inbox, wiring, Inbox, Proc};
-use shroud_core::message::{CloudMessage, NodeStatusMessage, SurrogateMessage};
+use shroud_msg::{CloudMessage, NodeStatusMessage, SurrogateMessage};
+use shroud_surrogate::SurrogateWire;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 

@@ -232,14 +232,14 @@ pub fn sheet(z: f32) -> Vec<[f32; 3]> {
 /// OBJ bytes of the cube inscribed in the sphere of radius 0.7 around
 /// (0.5, 0.5, 0.5): a coarse quad mesh of that ball, for parametric fits.
 pub fn inscribed_cube_obj() -> Vec<u8> {
-    let (vertices, faces) = shroud_core::mesh::cube_mesh().into_parts();
+    let (vertices, faces) = shroud_shapes::mesh::cube_mesh().into_parts();
     let a = 0.7 / 3f64.sqrt();
     let scaled = vertices
         .iter()
         .map(|p| p.map(|x| 0.5 + (2.0 * x - 1.0) * a))
         .collect();
-    let mesh = shroud_core::mesh::QuadMesh::new(scaled, faces).expect("a scaled cube");
-    shroud_core::mesh::write_obj(&mesh)
+    let mesh = shroud_shapes::mesh::QuadMesh::new(scaled, faces).expect("a scaled cube");
+    shroud_shapes::mesh::write_obj(&mesh)
 }
 
 /// Kills these pids (SIGKILL) when dropped, if still alive: a failed test must
@@ -309,7 +309,7 @@ pub fn joint_spread_if_any(joints: &Inbox, window: Duration) -> Option<f64> {
     while start.elapsed() < window {
         if let Ok(Some(s)) = joints.recv_timeout(Duration::from_millis(20)) {
             let bytes = s.payload().to_bytes();
-            let msg = shroud_core::message::JointStateMessage::from_bytes(&bytes);
+            let msg = shroud_msg::JointStateMessage::from_bytes(&bytes);
             seen.push(msg.expect("valid joint states").positions);
         }
     }
@@ -325,7 +325,7 @@ pub fn joint_spread_if_any(joints: &Inbox, window: Duration) -> Option<f64> {
 /// Points per source (parent, part, transition) of a blend node's model: its
 /// intensity is each point's source code.
 pub fn blend_sources(sample: &zenoh::sample::Sample) -> [usize; 3] {
-    let msg = shroud_core::message::CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+    let msg = shroud_msg::CloudMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
     let codes = msg
         .intensity_array()
         .unwrap()

@@ -4,7 +4,7 @@
 //! Payloads that do not decode are ignored here (a test may be flooding the
 //! topic with them).
 
-use shroud_core::message::NodeStatusMessage;
+use shroud_msg::NodeStatusMessage;
 use std::collections::HashMap;
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::{Duration, Instant};

@@ -4,7 +4,7 @@
 use crate::common::status_board::StatusBoard;
 use crate::common::unix_ns;
 use crate::RECOVERY;
-use shroud_core::message::NodeStatusMessage;
+use shroud_msg::NodeStatusMessage;
 use std::collections::HashMap;
 use std::time::Instant;
 

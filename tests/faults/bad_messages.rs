@@ -5,10 +5,12 @@
 //! of its kind before it is sent: a test of the nodes must not rest on a bad
 //! message that happens to be valid.
 
-use shroud_core::message::{
-    describe, BlendCommandMessage, CloudMessage, CollisionMessage, JointStateMessage, MessageError,
+use shroud_msg::{
+    BlendCommandMessage, CloudMessage, CollisionMessage, JointStateMessage, MessageError,
     NodeStatusMessage, SmoothPatchesMessage, SurrogateMessage, TopicKind, SCHEMA_VERSION,
 };
+use shroud_surrogate::SurrogateWire;
+use shroud_viewers::describe::describe;
 
 /// Sequence numbers at and above this one mark bad messages.
 pub const BAD_SEQUENCES: u64 = 1 << 40;

@@ -3,7 +3,7 @@
 //! (congestion control `Block`), pausable, and counted: the flood test must
 //! know exactly how many valid clouds each node was sent.
 
-use shroud_core::message::{CloudMessage, SensorPose};
+use shroud_msg::{CloudMessage, SensorPose};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Duration;

@@ -2,7 +2,8 @@
 //! taken from each (its latency, whether it is certified...) with its arrival
 //! time, read over windows of time.
 
-use shroud_core::message::SurrogateMessage;
+use shroud_msg::SurrogateMessage;
+use shroud_surrogate::SurrogateWire;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use zenoh::Wait;
@@ -60,8 +61,7 @@ pub fn latency_ms(m: &SurrogateMessage) -> f64 {
 
 /// Every surface certified, over a non-empty cloud.
 pub fn certified(m: &SurrogateMessage) -> bool {
-    let checked =
-        |c: &shroud_core::surrogate::Certificate| c.violations == 0 && c.points_checked > 0;
+    let checked = |c: &shroud_surrogate::Certificate| c.violations == 0 && c.points_checked > 0;
     m.surfaces.iter().all(|f| checked(&f.certificate))
 }
 

@@ -5,7 +5,8 @@
 //! test hears its own messages) and are skipped.
 
 use super::bad_messages::BAD_SEQUENCES;
-use shroud_core::message::{CollisionMessage, SmoothPatchesMessage, SurrogateMessage};
+use shroud_msg::{CollisionMessage, SmoothPatchesMessage, SurrogateMessage};
+use shroud_surrogate::SurrogateWire;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use zenoh::Wait;

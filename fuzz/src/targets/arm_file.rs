@@ -2,7 +2,7 @@
 //! settings, validated; a decoded arm poses.
 
 use crate::check::named;
-use shroud_core::guard::ArmFile;
+use shroud_guard::ArmFile;
 
 pub fn run(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {

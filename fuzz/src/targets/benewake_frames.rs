@@ -3,7 +3,7 @@
 //! in a packet, skipped (and counted) or buffered.
 
 use crate::check::{same, stream, Chunks};
-use shroud_core::ingest::benewake::{encode_frame, Command, Decoder};
+use shroud_drivers::benewake::{encode_frame, Command, Decoder};
 
 pub fn run(data: &[u8]) {
     let (seed, bytes) = stream(data);

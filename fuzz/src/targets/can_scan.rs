@@ -3,8 +3,8 @@
 
 use crate::can_records::{record, records};
 use crate::check::{named, same};
-use shroud_core::ingest::can::{CanScanDecoder, CanSensorConfig};
-use shroud_core::ingest::Scan;
+use shroud_drivers::can::{CanScanDecoder, CanSensorConfig};
+use shroud_drivers::Scan;
 
 pub fn run(data: &[u8]) {
     let config = CanSensorConfig::default();

@@ -3,7 +3,7 @@
 //! microseconds).
 
 use crate::check::{named, same};
-use shroud_core::ingest::can::{format_candump_line, parse_candump_line, CandumpParser};
+use shroud_drivers::can::{format_candump_line, parse_candump_line, CandumpParser};
 
 pub fn run(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {

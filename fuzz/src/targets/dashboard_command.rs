@@ -2,7 +2,7 @@
 //! frames, blend commands checked as every blend command is.
 
 use crate::check::named;
-use shroud_core::dashboard::{BrowserCommand, MAX_COMMAND_BYTES};
+use shroud_viewers::dashboard::{BrowserCommand, MAX_COMMAND_BYTES};
 
 pub fn run(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {

@@ -4,7 +4,7 @@
 
 use crate::check::{named, same};
 use serde_json::Value;
-use shroud_core::dashboard::{ArrayData, DecodedFrame, Frame};
+use shroud_viewers::dashboard::{ArrayData, DecodedFrame, Frame};
 
 pub fn run(data: &[u8]) {
     match DecodedFrame::decode(data) {
@@ -38,7 +38,7 @@ pub fn run(data: &[u8]) {
     }
 }
 
-fn size(array: &shroud_core::dashboard::DecodedArray) -> usize {
+fn size(array: &shroud_viewers::dashboard::DecodedArray) -> usize {
     if array.kind == "u8" {
         array.count
     } else {

@@ -4,7 +4,7 @@
 
 use crate::can_records::{record, records};
 use crate::check::{named, same};
-use shroud_core::ingest::dbc::{CanDatabase, BUILTIN};
+use shroud_drivers::dbc::{CanDatabase, BUILTIN};
 
 pub fn run(data: &[u8]) {
     let (text, frames) = match data.iter().position(|&b| b == 0) {
@@ -51,7 +51,7 @@ pub fn seeds() -> Vec<Vec<u8>> {
             let mut input = text.as_bytes().to_vec();
             input.push(0);
             for spec in database.messages() {
-                let mut frame = shroud_core::ingest::can::CanFrame::new(
+                let mut frame = shroud_drivers::can::CanFrame::new(
                     spec.id,
                     spec.extended,
                     &[0x5A; 8][..usize::from(spec.len)],

@@ -2,9 +2,9 @@
 //! RadarState, cluster and object lists decoded through the built-in DBC.
 
 use crate::can_device::{record, run as run_driver};
-use shroud_core::ingest::ars408::{Ars408Config, Ars408Driver, RadarOutput};
-use shroud_core::ingest::can_device::CanDeviceDriver;
-use shroud_core::ingest::dbc::builtin;
+use shroud_drivers::ars408::{Ars408Config, Ars408Driver, RadarOutput};
+use shroud_drivers::can_device::CanDeviceDriver;
+use shroud_drivers::dbc::builtin;
 
 pub fn run(data: &[u8]) {
     run_driver(driver, data);

@@ -2,8 +2,8 @@
 //! device's bytes: data frames and command replies.
 
 use crate::serial_device::{record, run as run_driver};
-use shroud_core::ingest::benewake::{BenewakeConfig, BenewakeDriver, BenewakeModel};
-use shroud_core::ingest::device::DeviceDriver;
+use shroud_drivers::benewake::{BenewakeConfig, BenewakeDriver, BenewakeModel};
+use shroud_drivers::device::DeviceDriver;
 
 pub fn run(data: &[u8]) {
     run_driver(driver, data);

@@ -2,11 +2,11 @@
 //! frames, for each CAN model.
 
 use crate::can_device::{record, run as run_driver};
-use shroud_core::ingest::assembly::MountPose;
-use shroud_core::ingest::benewake_can::{
+use shroud_drivers::assembly::MountPose;
+use shroud_drivers::benewake_can::{
     BenewakeCanConfig, BenewakeCanDriver, BenewakeCanModel, RangefinderConfig,
 };
-use shroud_core::ingest::can_device::CanDeviceDriver;
+use shroud_drivers::can_device::CanDeviceDriver;
 
 /// The CAN models: sim's name, shroud's name.
 const MODELS: [(&str, &str); 4] = [

@@ -2,8 +2,8 @@
 //! single answers and standard, express and dense scan streams.
 
 use crate::serial_device::{record, run as run_driver};
-use shroud_core::ingest::device::DeviceDriver;
-use shroud_core::ingest::rplidar::{RplidarConfig, RplidarDriver, ScanMode};
+use shroud_drivers::device::DeviceDriver;
+use shroud_drivers::rplidar::{RplidarConfig, RplidarDriver, ScanMode};
 
 pub fn run(data: &[u8]) {
     run_driver(driver, data);

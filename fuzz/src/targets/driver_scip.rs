@@ -2,8 +2,8 @@
 //! (ranges) or `ME` (ranges and intensity) streams.
 
 use crate::serial_device::{record, run as run_driver};
-use shroud_core::ingest::device::DeviceDriver;
-use shroud_core::ingest::scip::{ScanCommand, ScipConfig, ScipDriver};
+use shroud_drivers::device::DeviceDriver;
+use shroud_drivers::scip::{ScanCommand, ScipConfig, ScipDriver};
 
 pub fn run(data: &[u8]) {
     run_driver(driver, data);

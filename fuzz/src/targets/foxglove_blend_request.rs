@@ -3,7 +3,7 @@
 //! over the size limit is never taken.
 
 use crate::check::named;
-use shroud_core::message::{BlendRequest, MAX_REQUEST_BYTES};
+use shroud_msg::{BlendRequest, MAX_REQUEST_BYTES};
 
 pub fn run(data: &[u8]) {
     match BlendRequest::from_json(data).and_then(|request| request.checked()) {

@@ -2,7 +2,7 @@
 //! decoded file validates again.
 
 use crate::check::named;
-use shroud_core::launch::LaunchFile;
+use shroud_graph::launch::LaunchFile;
 
 pub fn run(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {

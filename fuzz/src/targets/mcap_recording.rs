@@ -1,12 +1,12 @@
 //! MCAP recordings as `shroud mcap info` and `shroud replay` read them
-//! (`shroud_core::record::read_records`): any bytes give records and an
+//! (`shroud_record::read_records`): any bytes give records and an
 //! ending, or a named error, within bounded memory; the first half of a
 //! finished recording never yields more messages than the whole.
 
 use crate::check::{bounded_allocation, named};
-use shroud_core::message::{TopicKey, TopicKind};
-use shroud_core::record::layout::{channel_metadata, schema_for, MESSAGE_ENCODING};
-use shroud_core::record::{read_records, Ending};
+use shroud_msg::{TopicKey, TopicKind};
+use shroud_record::layout::{channel_metadata, schema_for, MESSAGE_ENCODING};
+use shroud_record::{read_records, Ending};
 
 pub fn run(data: &[u8]) {
     bounded_allocation(data.len(), || {

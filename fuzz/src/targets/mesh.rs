@@ -3,7 +3,7 @@
 //! PLY the same with its vertices narrowed to f32 (as `to_ply` documents).
 
 use crate::check::{named, same};
-use shroud_core::format::{parse_triangle_mesh, TriangleMesh};
+use shroud_shapes::format::{parse_triangle_mesh, TriangleMesh};
 
 pub fn run(data: &[u8]) {
     match parse_triangle_mesh(data) {

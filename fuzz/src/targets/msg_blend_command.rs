@@ -4,8 +4,8 @@
 use crate::check::{named, same};
 use crate::round_trip;
 use glam::DVec3;
-use shroud_core::blend::{BlendCommand, LocalAdjust};
-use shroud_core::message::BlendCommandMessage;
+use shroud_shapes::blend::{BlendCommand, LocalAdjust};
+use shroud_msg::BlendCommandMessage;
 
 pub fn run(data: &[u8]) {
     let message = match BlendCommandMessage::from_bytes(data) {

@@ -4,7 +4,7 @@
 
 use crate::check::{named, same};
 use crate::round_trip;
-use shroud_core::message::{CloudMessage, CloudView, PointChannel, SensorPose};
+use shroud_msg::{CloudMessage, CloudView, PointChannel, SensorPose};
 
 pub fn run(data: &[u8]) {
     let view = CloudView::from_bytes(data);

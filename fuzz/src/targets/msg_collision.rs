@@ -2,7 +2,7 @@
 
 use crate::check::named;
 use crate::round_trip;
-use shroud_core::message::{CollisionMessage, GuardVerdict, LinkClearance};
+use shroud_msg::{CollisionMessage, GuardVerdict, LinkClearance};
 
 pub fn run(data: &[u8]) {
     match CollisionMessage::from_bytes(data) {
@@ -19,7 +19,7 @@ pub fn run(data: &[u8]) {
 
 pub fn seeds() -> Vec<Vec<u8>> {
     let message = CollisionMessage {
-        version: shroud_core::message::SCHEMA_VERSION,
+        version: shroud_msg::SCHEMA_VERSION,
         joints_stamp_ns: 100,
         joints_sequence: 7,
         arm: "arm".into(),

@@ -2,7 +2,7 @@
 
 use crate::check::named;
 use crate::round_trip;
-use shroud_core::message::JointStateMessage;
+use shroud_msg::JointStateMessage;
 
 pub fn run(data: &[u8]) {
     match JointStateMessage::from_bytes(data) {

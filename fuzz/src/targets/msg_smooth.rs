@@ -3,7 +3,7 @@
 
 use crate::check::named;
 use crate::round_trip;
-use shroud_core::message::SmoothPatchesMessage;
+use shroud_msg::SmoothPatchesMessage;
 
 pub fn run(data: &[u8]) {
     match SmoothPatchesMessage::from_bytes(data) {
@@ -32,7 +32,7 @@ pub fn seeds() -> Vec<Vec<u8>> {
         .collect();
     let coefficients = f64s(&(0..36).map(|i| f64::from(i) * 0.01).collect::<Vec<_>>());
     let message = SmoothPatchesMessage {
-        version: shroud_core::message::SCHEMA_VERSION,
+        version: shroud_msg::SCHEMA_VERSION,
         source_stamp_ns: 1,
         source_sequence: 2,
         source: "fit".into(),

@@ -2,7 +2,7 @@
 
 use crate::check::named;
 use crate::round_trip;
-use shroud_core::message::NodeStatusMessage;
+use shroud_msg::NodeStatusMessage;
 
 pub fn run(data: &[u8]) {
     match NodeStatusMessage::from_bytes(data) {

@@ -1,9 +1,10 @@
 //! Surrogate messages (`SurrogateMessage::from_bytes`): decoded and validated
 //! into a `Surrogate`; both must survive a round trip.
 
+use shroud_surrogate::SurrogateWire;
 use crate::check::{named, same};
 use crate::round_trip;
-use shroud_core::message::SurrogateMessage;
+use shroud_msg::SurrogateMessage;
 
 pub fn run(data: &[u8]) {
     match SurrogateMessage::from_bytes(data) {

@@ -3,7 +3,7 @@
 
 use crate::check::named;
 use crate::round_trip;
-use shroud_core::format::{parse_pcd, write_pcd, PcdEncoding};
+use shroud_shapes::format::{parse_pcd, write_pcd, PcdEncoding};
 
 pub fn run(data: &[u8]) {
     match parse_pcd(data) {
@@ -38,14 +38,14 @@ pub fn seeds() -> Vec<Vec<u8>> {
     seeds
 }
 
-/// The PCD files of core's tests (written by PCL and by make_fixtures.py).
+/// The PCD files of shroud-shapes' tests (written by PCL and by make_fixtures.py).
 const FIXTURES: [&[u8]; 8] = [
-    include_bytes!("../../../core/tests/data/pcd/intensity_first_binary.pcd"),
-    include_bytes!("../../../core/tests/data/pcd/organised_nan_ascii.pcd"),
-    include_bytes!("../../../core/tests/data/pcd/organised_nan_binary.pcd"),
-    include_bytes!("../../../core/tests/data/pcd/pcl113_fpfh_binary_compressed.pcd"),
-    include_bytes!("../../../core/tests/data/pcd/pcl113_organised_nan_binary.pcd"),
-    include_bytes!("../../../core/tests/data/pcd/xyz_rgb_fpfh_intensity_compressed.pcd"),
-    include_bytes!("../../../core/tests/data/pcd/xyz_rgb_intensity_ascii.pcd"),
-    include_bytes!("../../../core/tests/data/pcd/xyzi_padded_binary.pcd"),
+    include_bytes!("../../../libraries/shapes/tests/data/pcd/intensity_first_binary.pcd"),
+    include_bytes!("../../../libraries/shapes/tests/data/pcd/organised_nan_ascii.pcd"),
+    include_bytes!("../../../libraries/shapes/tests/data/pcd/organised_nan_binary.pcd"),
+    include_bytes!("../../../libraries/shapes/tests/data/pcd/pcl113_fpfh_binary_compressed.pcd"),
+    include_bytes!("../../../libraries/shapes/tests/data/pcd/pcl113_organised_nan_binary.pcd"),
+    include_bytes!("../../../libraries/shapes/tests/data/pcd/xyz_rgb_fpfh_intensity_compressed.pcd"),
+    include_bytes!("../../../libraries/shapes/tests/data/pcd/xyz_rgb_intensity_ascii.pcd"),
+    include_bytes!("../../../libraries/shapes/tests/data/pcd/xyzi_padded_binary.pcd"),
 ];

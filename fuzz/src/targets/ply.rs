@@ -2,7 +2,7 @@
 
 use crate::check::named;
 use crate::round_trip;
-use shroud_core::format::{parse_ply, write_ply_points};
+use shroud_shapes::format::{parse_ply, write_ply_points};
 
 pub fn run(data: &[u8]) {
     match parse_ply(data) {

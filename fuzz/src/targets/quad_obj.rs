@@ -1,7 +1,7 @@
 //! OBJ quad meshes (`mesh::parse_obj`), the domains of smooth surfaces.
 
 use crate::check::{named, same};
-use shroud_core::mesh::{cube_mesh, parse_obj, rectangle_mesh, write_obj};
+use shroud_shapes::mesh::{cube_mesh, parse_obj, rectangle_mesh, write_obj};
 
 pub fn run(data: &[u8]) {
     match parse_obj(data) {

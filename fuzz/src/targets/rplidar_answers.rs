@@ -2,7 +2,7 @@
 //! single answers, the same events and stray counts whatever the chunking.
 
 use crate::check::{same, stream, Chunks};
-use shroud_core::ingest::rplidar::reader::{ReaderEvent, ResponseReader};
+use shroud_drivers::rplidar::reader::{ReaderEvent, ResponseReader};
 
 pub fn run(data: &[u8]) {
     let (seed, bytes) = stream(data);

@@ -6,10 +6,10 @@
 
 use crate::check::{same, stream, Chunks};
 use crate::serial_device::{record, MakeDriver};
-use shroud_core::ingest::device::{DeviceStats, HostTime};
-use shroud_core::ingest::rplidar::stream::{SampleFormat, StreamDecoder, StreamEvent};
-use shroud_core::ingest::rplidar::timing::SampleClock;
-use shroud_core::ingest::rplidar::{RplidarConfig, RplidarDriver, ScanMode};
+use shroud_drivers::device::{DeviceStats, HostTime};
+use shroud_drivers::rplidar::stream::{SampleFormat, StreamDecoder, StreamEvent};
+use shroud_drivers::rplidar::timing::SampleClock;
+use shroud_drivers::rplidar::{RplidarConfig, RplidarDriver, ScanMode};
 
 const FORMATS: [SampleFormat; 3] = [
     SampleFormat::Standard,
@@ -68,22 +68,22 @@ pub fn seeds() -> Vec<Vec<u8>> {
         .collect()
 }
 
-fn driver(mode: ScanMode) -> Box<dyn shroud_core::ingest::device::DeviceDriver> {
+fn driver(mode: ScanMode) -> Box<dyn shroud_drivers::device::DeviceDriver> {
     Box::new(RplidarDriver::new(RplidarConfig {
         scan_mode: mode,
         ..RplidarConfig::default()
     }))
 }
 
-fn standard(_: u8) -> Box<dyn shroud_core::ingest::device::DeviceDriver> {
+fn standard(_: u8) -> Box<dyn shroud_drivers::device::DeviceDriver> {
     driver(ScanMode::Standard)
 }
 
-fn express(_: u8) -> Box<dyn shroud_core::ingest::device::DeviceDriver> {
+fn express(_: u8) -> Box<dyn shroud_drivers::device::DeviceDriver> {
     driver(ScanMode::Express)
 }
 
-fn dense(_: u8) -> Box<dyn shroud_core::ingest::device::DeviceDriver> {
+fn dense(_: u8) -> Box<dyn shroud_drivers::device::DeviceDriver> {
     driver(ScanMode::Dense)
 }
 

@@ -4,7 +4,7 @@
 //! (`decode_scan`), which re-encodes and decodes the same.
 
 use crate::check::{named, same, stream, Chunks};
-use shroud_core::ingest::scip::{
+use shroud_drivers::scip::{
     decode_scan, encode, line_sum, parse_pairs, Assembled, LineSplitter, Reply, ReplyAssembler,
     ScanKind, ScanRequest, Status,
 };
@@ -93,7 +93,7 @@ fn request_of(echo: &[u8]) -> Option<ScanRequest> {
 
 /// A single-echo scan's data lines as a sensor sends them: the timestamp,
 /// then the values cut into 64-character lines, each with its sum.
-fn lines_of(scan: &shroud_core::ingest::scip::ScanData, kind: ScanKind) -> Vec<Vec<u8>> {
+fn lines_of(scan: &shroud_drivers::scip::ScanData, kind: ScanKind) -> Vec<Vec<u8>> {
     let summed = |mut body: Vec<u8>| {
         body.push(line_sum(&body));
         body

@@ -3,8 +3,8 @@
 //! decoded scan, encoded again, decodes the same.
 
 use crate::check::{named, same, stream, Chunks};
-use shroud_core::ingest::serial::{PointEncoding, SerialEncoder, SerialScanDecoder};
-use shroud_core::ingest::{IngestError, Scan};
+use shroud_drivers::serial::{PointEncoding, SerialEncoder, SerialScanDecoder};
+use shroud_drivers::{IngestError, Scan};
 
 pub fn run(data: &[u8]) {
     let (seed, bytes) = stream(data);

@@ -3,8 +3,8 @@
 //! back as a line parses to the same frame.
 
 use crate::check::{named, same, stream, Chunks};
-use shroud_core::ingest::can::slcan::{encode_frame, open_commands, parse_line};
-use shroud_core::ingest::can::{CanFrame, SlcanDecoder, SlcanMessage};
+use shroud_drivers::can::slcan::{encode_frame, open_commands, parse_line};
+use shroud_drivers::can::{CanFrame, SlcanDecoder, SlcanMessage};
 
 pub fn run(data: &[u8]) {
     let (seed, bytes) = stream(data);

@@ -4,7 +4,7 @@
 
 use crate::check::named;
 use crate::round_trip::stable;
-use shroud_core::format::{
+use shroud_shapes::format::{
     surrogate_from_binary, surrogate_from_json, surrogate_to_binary, surrogate_to_json,
 };
 

@@ -3,7 +3,7 @@
 
 use crate::check::named;
 use glam::DAffine3;
-use shroud_core::guard::ArmModel;
+use shroud_guard::ArmModel;
 
 pub fn run(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {

@@ -1,7 +1,7 @@
 //! XYZ, CSV and TSV text clouds (`format::parse_xyz`).
 
 use crate::check::{named, same};
-use shroud_core::format::{parse_xyz, write_xyz};
+use shroud_shapes::format::{parse_xyz, write_xyz};
 
 pub fn run(data: &[u8]) {
     match parse_xyz(data) {

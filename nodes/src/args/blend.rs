@@ -4,7 +4,7 @@
 use crate::parse;
 use anyhow::Result;
 use glam::DVec3;
-use shroud_core::blend::BlendParams;
+use shroud_shapes::blend::BlendParams;
 
 /// The blend's tunables, shared by `shroud blend` and the `blend` node.
 #[derive(clap::Args, Debug, Clone)]

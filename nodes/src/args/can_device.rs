@@ -4,13 +4,13 @@
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use shroud_core::ingest::ars408::{Ars408Config, Ars408Driver, RadarOutput, RadarSettings};
-use shroud_core::ingest::assembly::MountPose;
-use shroud_core::ingest::benewake_can::{
+use shroud_drivers::ars408::{Ars408Config, Ars408Driver, RadarOutput, RadarSettings};
+use shroud_drivers::assembly::MountPose;
+use shroud_drivers::benewake_can::{
     BenewakeCanConfig, BenewakeCanDriver, BenewakeCanModel, RangefinderConfig,
 };
-use shroud_core::ingest::can_device::CanDeviceDriver;
-use shroud_core::ingest::dbc::{builtin, CanDatabase, MAX_DBC_BYTES};
+use shroud_drivers::can_device::CanDeviceDriver;
+use shroud_drivers::dbc::{builtin, CanDatabase, MAX_DBC_BYTES};
 use std::path::PathBuf;
 
 /// The device on the bus.

@@ -1,13 +1,13 @@
 //! Which range sensor `shroud node serial` reads and how: the device kind,
-//! the port's rate, and each kind's own settings, turned into the core
+//! the port's rate, and each kind's own settings, turned into the `shroud-drivers`
 //! driver configurations.
 
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
-use shroud_core::ingest::benewake::{BenewakeConfig, BenewakeDriver, BenewakeModel, DistanceUnit};
-use shroud_core::ingest::device::DeviceDriver;
-use shroud_core::ingest::rplidar::{MotorControl, RplidarConfig, RplidarDriver, ScanMode};
-use shroud_core::ingest::scip::{Link, ScanCommand, ScipConfig, ScipDriver};
+use shroud_drivers::benewake::{BenewakeConfig, BenewakeDriver, BenewakeModel, DistanceUnit};
+use shroud_drivers::device::DeviceDriver;
+use shroud_drivers::rplidar::{MotorControl, RplidarConfig, RplidarDriver, ScanMode};
+use shroud_drivers::scip::{Link, ScanCommand, ScipConfig, ScipDriver};
 use std::time::Duration;
 
 /// The protocol the device on the port speaks.

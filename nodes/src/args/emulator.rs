@@ -8,17 +8,15 @@ use super::mount::MountArgs;
 use crate::ingest::EmulatorLine;
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use shroud_core::format::parse_triangle_mesh;
-use shroud_core::ingest::assembly::MountPose;
+use shroud_drivers::assembly::MountPose;
+use shroud_shapes::format::parse_triangle_mesh;
 use shroud_sim::can_device::{
     can_emulator, CanDeviceEmulator, CanEmulatorOptions, CanWorld, RangefinderSpec, CAN_MODELS,
 };
 use shroud_sim::device::hokuyo::HokuyoModel;
-use shroud_sim::device::{
-    EmulatorOptions, Faults, MeshRays, SerialDeviceEmulator, SlcanAdapter, MODELS,
-};
-use shroud_sim::MovingSpheres;
+use shroud_sim::device::{EmulatorOptions, Faults, MeshRays, SerialDeviceEmulator, MODELS};
 use shroud_sim::{Bvh, TableTop, Terrain, DEFAULT_CYLINDER_SEGMENTS, DEFAULT_TERRAIN_CELLS};
+use shroud_sim::{MovingSpheres, SlcanAdapter};
 use std::path::PathBuf;
 use std::sync::Arc;
 

@@ -5,7 +5,7 @@
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use glam::DVec3;
-use shroud_core::ingest::assembly::{
+use shroud_drivers::assembly::{
     AssemblyConfig, CloudWindow, MountMotion, MountPose, MovingMount, SweepProfile,
     DEFAULT_MAX_POSITION_ERROR_M,
 };

@@ -2,8 +2,8 @@
 //! `smooth` node): a quad mesh, the cube-sphere or a rectangle.
 
 use anyhow::{bail, Context, Result};
-use shroud_core::mesh::{parse_obj, G1Domain, QuadMesh};
-use shroud_core::smooth::{cube_sphere, is_planar, Parametrisation};
+use shroud_shapes::mesh::{parse_obj, G1Domain, QuadMesh};
+use shroud_shapes::smooth::{cube_sphere, is_planar, Parametrisation};
 use std::path::PathBuf;
 
 /// The fitting domain, shared by `shroud smooth` and the `smooth` node.
@@ -121,5 +121,5 @@ fn plane_domain(text: &str, parameters: &str) -> Result<QuadMesh> {
         Some(&n) if n.fract() == 0.0 && (1.0..=256.0).contains(&n) => n as u32,
         Some(_) => bail!("--domain {text}: N must be a whole number from 1 to 256"),
     };
-    Ok(shroud_core::mesh::rectangle_mesh([x0, y0], [x1, y1], n)?)
+    Ok(shroud_shapes::mesh::rectangle_mesh([x0, y0], [x1, y1], n)?)
 }

@@ -4,7 +4,7 @@
 use crate::parse;
 use anyhow::Result;
 use clap::Args;
-use shroud_core::surrogate::{FitOptions, Sides, Tightness};
+use shroud_surrogate::{FitOptions, Sides, Tightness};
 
 /// How a surrogate is shaped: grid, direction, tightness, trimming. Shared by
 /// `shroud fit` and the `fit` node.

@@ -17,18 +17,18 @@ use super::encode::encode_timed;
 use super::{median, timed, BenchArgs};
 use crate::transport::PayloadWriter;
 use anyhow::{anyhow, bail, ensure, Context, Result};
-use shroud_core::ingest::ars408::{Ars408Config, Ars408Driver, RadarSettings};
-use shroud_core::ingest::assembly::MountPose;
-use shroud_core::ingest::benewake_can::{
+use shroud_drivers::ars408::{Ars408Config, Ars408Driver, RadarSettings};
+use shroud_drivers::assembly::MountPose;
+use shroud_drivers::benewake_can::{
     BenewakeCanConfig, BenewakeCanDriver, BenewakeCanModel, RangefinderConfig,
 };
-use shroud_core::ingest::can::CanFrame;
-use shroud_core::ingest::can_device::{
+use shroud_drivers::can::CanFrame;
+use shroud_drivers::can_device::{
     CanDeviceDriver, CanDriverOutput, FrameClock, SensorCloud, TimedFrame,
 };
-use shroud_core::ingest::dbc::{builtin, CanDatabase};
-use shroud_core::ingest::device::{DeviceState, HostTime};
-use shroud_core::metrics::{LatencySummary, Percentiles};
+use shroud_drivers::dbc::{builtin, CanDatabase};
+use shroud_drivers::device::{DeviceState, HostTime};
+use shroud_graph::metrics::{LatencySummary, Percentiles};
 use shroud_sim::can_device::ars408::CYCLE_PERIOD_S;
 use shroud_sim::can_device::benewake::BenewakeCanModel as EmulatedBenewake;
 use shroud_sim::can_device::{

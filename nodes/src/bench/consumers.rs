@@ -16,7 +16,7 @@ use super::foxglove_clients::FoxgloveClients;
 use super::graph::{tree_cpu_seconds, BenchGraph};
 use super::BenchArgs;
 use anyhow::{bail, Context, Result};
-use shroud_core::metrics::Percentiles;
+use shroud_graph::metrics::Percentiles;
 use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};
 use std::sync::{Arc, Mutex};
@@ -202,7 +202,7 @@ async fn listen(
     let sink = heard.clone();
     let recorder = graph
         .on_status("record", move |s| {
-            let dropped: u64 = shroud_core::record::DropCause::ALL
+            let dropped: u64 = shroud_record::DropCause::ALL
                 .iter()
                 .map(|c| s.counter(c.counter()))
                 .sum();
@@ -371,7 +371,7 @@ impl Readers {
                         tokio::time::timeout(Duration::from_millis(200), socket.next()).await;
                     match next {
                         Ok(Some(Ok(tokio_tungstenite::tungstenite::Message::Binary(bytes)))) => {
-                            if shroud_core::dashboard::DecodedFrame::decode(&bytes).is_ok() {
+                            if shroud_viewers::dashboard::DecodedFrame::decode(&bytes).is_ok() {
                                 frames += 1;
                             }
                         }

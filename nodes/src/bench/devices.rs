@@ -16,14 +16,14 @@ use crate::transport::PayloadWriter;
 use anyhow::{bail, ensure, Result};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
-use shroud_core::ingest::assembly::{AssemblyConfig, CloudAssembler, MountPose, MovingMount};
-use shroud_core::ingest::benewake::{BenewakeConfig, BenewakeDriver, BenewakeModel};
-use shroud_core::ingest::device::{
+use shroud_drivers::assembly::{AssemblyConfig, CloudAssembler, MountPose, MovingMount};
+use shroud_drivers::benewake::{BenewakeConfig, BenewakeDriver, BenewakeModel};
+use shroud_drivers::device::{
     DeviceDriver, DeviceState, DeviceStats, DriverOutput, HostTime, RangeScan,
 };
-use shroud_core::ingest::rplidar::{RplidarConfig, RplidarDriver, ScanMode};
-use shroud_core::ingest::scip::{ScanCommand, ScipConfig, ScipDriver};
-use shroud_core::metrics::{LatencySummary, Percentiles};
+use shroud_drivers::rplidar::{RplidarConfig, RplidarDriver, ScanMode};
+use shroud_drivers::scip::{ScanCommand, ScipConfig, ScipDriver};
+use shroud_graph::metrics::{LatencySummary, Percentiles};
 use shroud_sim::device::{emulator, EmulatorOptions, MeshRays, SerialDeviceEmulator};
 use shroud_sim::{Bvh, TableTop, DEFAULT_CYLINDER_SEGMENTS};
 use std::sync::Arc;

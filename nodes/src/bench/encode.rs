@@ -4,8 +4,8 @@
 
 use crate::transport::PayloadWriter;
 use anyhow::Result;
-use shroud_core::ingest::Scan;
-use shroud_core::message::SensorPose;
+use shroud_drivers::Scan;
+use shroud_msg::SensorPose;
 use std::hint::black_box;
 use std::time::Instant;
 

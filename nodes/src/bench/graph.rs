@@ -4,7 +4,8 @@
 
 use crate::transport::{die_with_parent, OnOff, ZenohArgs};
 use anyhow::{Context, Result};
-use shroud_core::message::{NodeStatusMessage, SurrogateMessage, TopicKind};
+use shroud_msg::{NodeStatusMessage, SurrogateMessage, TopicKind};
+use shroud_surrogate::SurrogateWire;
 use std::collections::BTreeMap;
 use std::process::{Child, Command, Stdio};
 

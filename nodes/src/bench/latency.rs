@@ -6,8 +6,8 @@ use super::graph::BenchGraph;
 use super::BenchArgs;
 use crate::transport::{topic_publisher, unix_ns, PayloadWriter};
 use anyhow::Result;
-use shroud_core::message::{CloudView, TopicKind};
-use shroud_core::metrics::Percentiles;
+use shroud_graph::metrics::Percentiles;
+use shroud_msg::{CloudView, TopicKind};
 use shroud_sim::MovingSpheres;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -18,7 +18,7 @@ struct Row {
     rate: f64,
     published: u64,
     received: u64,
-    latency: Option<shroud_core::metrics::LatencySummary>,
+    latency: Option<shroud_graph::metrics::LatencySummary>,
     fit_p50: f64,
     overhead_p50: f64,
 }

@@ -4,11 +4,11 @@
 
 use super::{median, timed, BenchArgs};
 use anyhow::Result;
-use shroud_core::surrogate::{
+use shroud_sim::MovingSpheres;
+use shroud_surrogate::{
     fit_curve_above, fit_curve_by_trial_and_error, FitOptions, Histogram, SurrogateFitter,
     Tightness,
 };
-use shroud_sim::MovingSpheres;
 
 /// Table 1 of the paper: milliseconds on a 2.4 GHz Pentium 4, 20 x 20.
 const TABLE1: [(usize, f64); 5] = [
@@ -112,7 +112,7 @@ fn warm_stream(points: usize, grid: usize, config: usize, frames: usize) -> Resu
     Ok(times)
 }
 
-fn certified(s: &shroud_core::surrogate::Surrogate) -> Result<()> {
+fn certified(s: &shroud_surrogate::Surrogate) -> Result<()> {
     for surface in s.surfaces() {
         anyhow::ensure!(
             surface.certificate.violations == 0,

@@ -10,8 +10,8 @@
 use super::graph::{rss_bytes, tree_cpu_seconds, BenchGraph};
 use super::BenchArgs;
 use anyhow::{bail, Result};
-use shroud_core::message::NodeStatusMessage;
-use shroud_core::metrics::Percentiles;
+use shroud_graph::metrics::Percentiles;
+use shroud_msg::NodeStatusMessage;
 use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};

@@ -6,7 +6,8 @@ use crate::args::{points3, BlendShapeArgs};
 use crate::{files, parse};
 use anyhow::{bail, Context, Result};
 use glam::{DVec2, DVec3};
-use shroud_core::blend::{
+use shroud_shapes::blend::AdjustTransform;
+use shroud_shapes::blend::{
     blend, write_ply_with_normals, Camera, Child, DragSession, LocalAdjust, PolygonOfInterest,
     Prepared,
 };

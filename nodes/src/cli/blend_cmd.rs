@@ -7,8 +7,8 @@ use crate::transport::{topic_publisher, unix_ns, ZenohArgs};
 use anyhow::Result;
 use clap::{Args, Subcommand};
 use glam::DVec3;
-use shroud_core::blend::{BlendCommand, LocalAdjust};
-use shroud_core::message::{BlendCommandMessage, TopicKind};
+use shroud_msg::{BlendCommandMessage, TopicKind};
+use shroud_shapes::blend::{BlendCommand, LocalAdjust};
 use std::time::Duration;
 
 #[derive(Debug, Args)]

@@ -4,8 +4,8 @@
 use crate::bench::median;
 use anyhow::Result;
 use clap::Args;
-use shroud_core::surrogate::{FitOptions, Sides, Surrogate, SurrogateFitter};
 use shroud_sim::MovingSpheres;
+use shroud_surrogate::{FitOptions, Sides, Surrogate, SurrogateFitter};
 use std::time::{Duration, Instant};
 
 #[derive(Debug, Args)]

@@ -4,8 +4,8 @@ use crate::args::SurrogateShapeArgs;
 use crate::files;
 use anyhow::{Context, Result};
 use clap::Args;
-use shroud_core::format;
-use shroud_core::surrogate::{Certificate, FitOptions, Sides, Surrogate, SurrogateFitter};
+use shroud_shapes::format;
+use shroud_surrogate::{Certificate, FitOptions, Sides, Surrogate, SurrogateFitter};
 use std::path::PathBuf;
 use std::time::Instant;
 

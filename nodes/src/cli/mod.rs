@@ -3,14 +3,13 @@
 mod blend;
 mod blend_cmd;
 mod demo;
-mod exit;
 pub mod fit;
 mod query;
 pub mod sensor_sim;
 mod sim;
 mod smooth;
 
-pub use exit::ExitWith;
+pub use crate::exit::ExitWith;
 pub use fit::certificate_line;
 
 use anyhow::Result;

@@ -5,7 +5,7 @@ use crate::{files, parse};
 use anyhow::{bail, Result};
 use clap::Args;
 use glam::DVec3;
-use shroud_core::query::{
+use shroud_surrogate::query::{
     BoundOptions, BoundQuery, Classify, PointClass, Ray, RayCast, SurrogateView, UvRect,
 };
 use std::path::PathBuf;

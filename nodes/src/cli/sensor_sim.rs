@@ -9,12 +9,12 @@ use crate::ingest::run_emulator;
 use crate::ingest::sim::{CandumpWriter, ScanSink, SerialSensorWriter, SlcanWriter};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use shroud_core::ingest::can::{
+use shroud_drivers::can::{
     format_candump_line, CanSensorConfig, CandumpRecord, MAX_CAN_POINTS, MAX_EXTENDED_ID,
     MAX_STANDARD_ID,
 };
-use shroud_core::ingest::serial::{PointEncoding, SerialEncoder, MAX_FRAME_POINTS};
-use shroud_core::ingest::Scan;
+use shroud_drivers::serial::{PointEncoding, SerialEncoder, MAX_FRAME_POINTS};
+use shroud_drivers::Scan;
 use shroud_sim::can_device::CAN_MODELS;
 use shroud_sim::Scene;
 use std::io::Write;

@@ -5,8 +5,8 @@
 use crate::files;
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use shroud_core::format::PcdEncoding;
-use shroud_core::mesh::{
+use shroud_shapes::format::PcdEncoding;
+use shroud_shapes::mesh::{
     l_block, levels_within, parse_obj, ring_block, sample_limit_surface, step_block, write_obj,
     QuadMesh,
 };

@@ -10,9 +10,9 @@
 use crate::args::SmoothDomainArgs;
 use crate::files;
 use anyhow::{bail, Context, Result};
-use shroud_core::format::TriangleMesh;
-use shroud_core::mesh::{write_obj, G1Basis, G1Domain, QuadMesh};
-use shroud_core::smooth::{FitErrors, Parametrisation, SmoothFitter, SmoothSurface};
+use shroud_shapes::format::TriangleMesh;
+use shroud_shapes::mesh::{write_obj, G1Basis, G1Domain, QuadMesh};
+use shroud_shapes::smooth::{FitErrors, Parametrisation, SmoothFitter, SmoothSurface};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -35,7 +35,7 @@ pub struct SmoothArgs {
     /// functions have exact parameters and take none.
     #[arg(long)]
     pub corrections: Option<usize>,
-    /// Output: .json (patch coefficients, see core/FORMATS.md), or .obj / .ply
+    /// Output: .json (patch coefficients, see docs/formats.md), or .obj / .ply
     /// (the surface tessellated). Repeat for several: `-o fit.json -o fit.ply`.
     #[arg(short, long)]
     pub output: Vec<PathBuf>,

@@ -2,14 +2,14 @@
 //! every frame with its times, sends what the driver asks, polls it when the
 //! bus is quiet, and reopens the source with backoff when it goes away. Every
 //! decision about the device is the driver's
-//! (`shroud_core::ingest::can_device`); this file only moves frames.
+//! (`shroud_drivers::can_device`); this file only moves frames.
 
 use super::backoff::{Backoff, BackoffConfig};
 use super::can_source::open_with_backoff;
 use super::device_port::host_now;
 use super::{CanSource, ReaderError, SourceError};
-use shroud_core::ingest::can_device::{CanDeviceDriver, CanDriverOutput};
-use shroud_core::ingest::DecoderStats;
+use shroud_drivers::can_device::{CanDeviceDriver, CanDriverOutput};
+use shroud_drivers::DecoderStats;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 

@@ -3,9 +3,9 @@
 use super::backoff::Backoff;
 use super::device_port::host_now;
 use super::{ReaderError, SourceError};
-use shroud_core::ingest::can::CanFrame;
-use shroud_core::ingest::can_device::{FrameClock, TimedFrame};
-use shroud_core::ingest::DecoderStats;
+use shroud_drivers::can::CanFrame;
+use shroud_drivers::can_device::{FrameClock, TimedFrame};
+use shroud_drivers::DecoderStats;
 use std::io;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;

@@ -5,9 +5,9 @@
 use super::backoff::sleep_unless_stopped;
 use super::device_port::host_now;
 use super::{CanSource, SourceError};
-use shroud_core::ingest::can::{CandumpParser, CandumpRecord};
-use shroud_core::ingest::can_device::{FrameClock, TimedFrame};
-use shroud_core::ingest::DecoderStats;
+use shroud_drivers::can::{CandumpParser, CandumpRecord};
+use shroud_drivers::can_device::{FrameClock, TimedFrame};
+use shroud_drivers::DecoderStats;
 use std::fs::File;
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};

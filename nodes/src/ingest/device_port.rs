@@ -2,13 +2,13 @@
 //! ways, applies the line settings the driver asks for, hands the driver the
 //! host's time, and reopens the port with backoff when it goes away or the
 //! driver gives up on it. Every decision about the device is the driver's
-//! (`shroud_core::ingest::device`); this file only moves bytes.
+//! (`shroud_drivers::device`); this file only moves bytes.
 
 use super::backoff::{Backoff, BackoffConfig};
 use super::ReaderError;
 use crate::transport::{monotonic_ns, unix_ns};
 use serialport::{ClearBuffer, SerialPort};
-use shroud_core::ingest::device::{DeviceDriver, DeviceStats, DriverOutput, HostTime, ReadWindow};
+use shroud_drivers::device::{DeviceDriver, DeviceStats, DriverOutput, HostTime, ReadWindow};
 use std::io;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
@@ -130,7 +130,7 @@ pub fn run_device(
         drop(port);
         let (kind, device_stats) = (driver.kind(), driver.stats().clone());
         on_output(
-            DriverOutput::State(shroud_core::ingest::device::DeviceState::Disconnected),
+            DriverOutput::State(shroud_drivers::device::DeviceState::Disconnected),
             &device_stats,
             &stats,
         );

@@ -3,8 +3,8 @@
 
 use super::can_source::received_now;
 use super::{CanSource, SourceError};
-use shroud_core::ingest::can::CanFrame;
-use shroud_core::ingest::can_device::TimedFrame;
+use shroud_drivers::can::CanFrame;
+use shroud_drivers::can_device::TimedFrame;
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
 use std::time::Duration;
 

@@ -1,6 +1,6 @@
 //! Sensor ingest on devices: blocking readers that turn serial and CAN range
 //! sensors into [`Scan`]s, and writers that simulate such sensors. The codecs
-//! (pure) are in `shroud_core::ingest`; the protocols are specified in
+//! (pure) are in `shroud_drivers`; the protocols are specified in
 //! `docs/sensor-protocols.md`.
 //!
 //! Readers run on their own thread until a stop flag is set:
@@ -23,8 +23,8 @@
 //!   names one in text (`socketcan:can0`, `slcan:/dev/ttyACM0@115200:500000`,
 //!   `candump:run.log@max`);
 //! - [`run_can_device`]: a real CAN sensor's driver
-//!   (`shroud_core::ingest::{ars408, benewake_can}`) on any [`CanSource`];
-//! - [`run_device`]: a real sensor's driver (`shroud_core::ingest::{scip,
+//!   (`shroud_drivers::{ars408, benewake_can}`) on any [`CanSource`];
+//! - [`run_device`]: a real sensor's driver (`shroud_drivers::{scip,
 //!   rplidar, benewake}`) on a serial port ([`DevicePortConfig`]);
 //! - [`sim`]: the simulated sensors' writers behind `shroud sensor-sim`, and
 //!   [`run_emulator`]: an emulated real device on a pseudo-terminal.
@@ -56,7 +56,7 @@ pub use emulated_device::{run_emulator, EmulatorLine, LineStats};
 pub use error::{ReaderError, SourceError};
 pub use memory_bus::{memory_bus, memory_bus_duplex, MemoryBus, MemoryBusSender};
 pub use serial::{run_serial_reader, SerialReaderConfig};
-pub use shroud_core::ingest::Scan;
+pub use shroud_drivers::Scan;
 pub use slcan_source::SlcanSource;
 pub use socketcan_source::{from_socketcan, to_socketcan, SocketCanSource};
 pub use stats::ReaderStats;

@@ -2,7 +2,7 @@
 //! `warn` summary of the counters at most once per interval while errors grow.
 
 use super::ReaderStats;
-use shroud_core::ingest::{DecoderStats, ErrorKind, IngestError, Scan};
+use shroud_drivers::{DecoderStats, ErrorKind, IngestError, Scan};
 use std::time::{Duration, Instant};
 
 #[derive(Debug)]

@@ -5,8 +5,8 @@
 use super::backoff::{Backoff, BackoffConfig};
 use super::report::ErrorReporter;
 use super::{ReaderError, ReaderStats};
-use shroud_core::ingest::serial::{DecoderConfig, SerialScanDecoder};
-use shroud_core::ingest::Scan;
+use shroud_drivers::serial::{DecoderConfig, SerialScanDecoder};
+use shroud_drivers::Scan;
 use std::io::{self, Read};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;

@@ -3,11 +3,9 @@
 //! file). A writer never blocks for long: bytes a full device will not take
 //! within the patience are dropped and counted, as on a real UART.
 
-use shroud_core::ingest::can::{
-    format_candump_line, slcan, CanFrame, CanSensorConfig, CandumpRecord,
-};
-use shroud_core::ingest::serial::SerialEncoder;
-use shroud_core::ingest::Scan;
+use shroud_drivers::can::{format_candump_line, slcan, CanFrame, CanSensorConfig, CandumpRecord};
+use shroud_drivers::serial::SerialEncoder;
+use shroud_drivers::Scan;
 use std::io::{self, Write};
 use std::time::{Duration, Instant};
 

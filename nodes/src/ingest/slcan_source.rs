@@ -4,10 +4,10 @@
 
 use super::can_source::received_now;
 use super::{CanSource, SourceError};
-use shroud_core::ingest::can::slcan::{encode_frame, open_commands, SlcanDecoder, SlcanMessage};
-use shroud_core::ingest::can::CanFrame;
-use shroud_core::ingest::can_device::TimedFrame;
-use shroud_core::ingest::DecoderStats;
+use shroud_drivers::can::slcan::{encode_frame, open_commands, SlcanDecoder, SlcanMessage};
+use shroud_drivers::can::CanFrame;
+use shroud_drivers::can_device::TimedFrame;
+use shroud_drivers::DecoderStats;
 use std::collections::VecDeque;
 use std::io::{self, Read, Write};
 use std::time::{Duration, Instant};

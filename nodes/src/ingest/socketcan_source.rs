@@ -8,8 +8,8 @@
 
 use super::device_port::host_now;
 use super::{CanSource, SourceError};
-use shroud_core::ingest::can::CanFrame;
-use shroud_core::ingest::can_device::{FrameClock, TimedFrame};
+use shroud_drivers::can::CanFrame;
+use shroud_drivers::can_device::{FrameClock, TimedFrame};
 use socketcan::{CanSocket, EmbeddedFrame, Frame, Socket, SocketOptions};
 use std::io;
 use std::time::{Duration, SystemTime, UNIX_EPOCH};

@@ -1,7 +1,7 @@
 //! Counters of a device reader: the decoder's, plus the device's own life
 //! (opens, failed opens, disconnects, bytes).
 
-use shroud_core::ingest::DecoderStats;
+use shroud_drivers::DecoderStats;
 use std::fmt;
 
 /// What a reader did, summed over every (re)connection.

@@ -4,7 +4,8 @@
 use super::tool::{resolve_topic, ToolArgs};
 use anyhow::Result;
 use clap::Args;
-use shroud_core::message::{describe, TopicKey};
+use shroud_msg::TopicKey;
+use shroud_viewers::describe::describe;
 use std::time::Duration;
 
 #[derive(Debug, Args)]

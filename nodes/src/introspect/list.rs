@@ -4,7 +4,7 @@
 use super::tool::ToolArgs;
 use anyhow::Result;
 use clap::Args;
-use shroud_core::message::TopicKey;
+use shroud_msg::TopicKey;
 use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;

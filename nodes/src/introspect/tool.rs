@@ -4,7 +4,7 @@
 use crate::transport::ZenohArgs;
 use anyhow::Result;
 use clap::Args;
-use shroud_core::message::Topics;
+use shroud_msg::Topics;
 
 #[derive(Debug, Clone, Args)]
 pub struct ToolArgs {

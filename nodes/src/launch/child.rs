@@ -6,7 +6,7 @@ use super::plan::PlannedNode;
 use crate::transport::die_with_parent;
 use anyhow::{Context, Result};
 #[cfg(doc)]
-use shroud_core::launch::LAUNCHER_FLAGS;
+use shroud_graph::launch::LAUNCHER_FLAGS;
 use std::process::Stdio;
 use tokio::io::{AsyncBufReadExt, AsyncRead, BufReader};
 use tokio::process::{Child, Command};
@@ -109,7 +109,7 @@ pub async fn stop(child: &mut Child, name: &str, grace: std::time::Duration) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use shroud_core::launch::{LaunchFile, LAUNCHER_FLAGS};
+    use shroud_graph::launch::{LaunchFile, LAUNCHER_FLAGS};
 
     /// A fit node fed from outside, with extra lines.
     fn fit(extra: &str) -> String {

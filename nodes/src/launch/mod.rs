@@ -14,7 +14,7 @@ mod supervise;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use shroud_core::launch::{wiring_mermaid, wiring_text, LaunchFile};
+use shroud_graph::launch::{wiring_mermaid, wiring_text, LaunchFile};
 use std::path::PathBuf;
 use std::time::Duration;
 

@@ -5,10 +5,11 @@
 use super::output;
 use super::roster::Roster;
 use anyhow::Result;
-use shroud_core::message::{
+use shroud_graph::metrics::GraphSummary;
+use shroud_msg::{
     CollisionMessage, MessageError, NodeStatusMessage, SurrogateMessage, TopicKind, Topics,
 };
-use shroud_core::metrics::GraphSummary;
+use shroud_surrogate::SurrogateWire;
 use std::collections::BTreeSet;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};

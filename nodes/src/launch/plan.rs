@@ -4,7 +4,7 @@
 
 use crate::node::NodeCommand;
 use clap::{CommandFactory, Parser};
-use shroud_core::launch::{LaunchError, LaunchFile, NodeSpec};
+use shroud_graph::launch::{LaunchError, LaunchFile, NodeSpec};
 
 /// A node of the file with the options it is started with (after the
 /// launcher's own).
@@ -142,7 +142,7 @@ fn scalar(value: &toml::Value) -> Result<String, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use shroud_core::launch::{Direction, NodeKind};
+    use shroud_graph::launch::{Direction, NodeKind};
 
     fn planned(text: &str) -> Result<Vec<PlannedNode>, String> {
         let file = LaunchFile::from_toml_str(text).map_err(|e| e.to_string())?;
@@ -311,8 +311,9 @@ mod tests {
     fn the_docs_show_the_demos_graph_as_drawn() {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
         let demo = std::fs::read_to_string(root.join("launch/demo.toml")).unwrap();
-        let chart = shroud_core::launch::wiring_mermaid(&LaunchFile::from_toml_str(&demo).unwrap())
-            .unwrap();
+        let chart =
+            shroud_graph::launch::wiring_mermaid(&LaunchFile::from_toml_str(&demo).unwrap())
+                .unwrap();
         let docs = std::fs::read_to_string(root.join("docs/node-graph.md")).unwrap();
         assert!(
             docs.contains(&format!("```mermaid\n{chart}```")),

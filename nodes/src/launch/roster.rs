@@ -4,7 +4,7 @@
 //! dashboards and tests see restart counts.
 
 use crate::transport::unix_ns;
-use shroud_core::message::{NodeStatusMessage, TopicKind, Topics};
+use shroud_msg::{NodeStatusMessage, TopicKind, Topics};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use zenoh::Wait;
 
 /// The launcher's status name; launch files may not use it for a node.
-pub use shroud_core::launch::LAUNCHER_NAME;
+pub use shroud_graph::launch::LAUNCHER_NAME;
 
 #[derive(Debug, Clone, Default)]
 struct Child {
@@ -60,7 +60,7 @@ impl Roster {
         msg.stamp_ns = unix_ns();
         msg.uptime_s = started.elapsed().as_secs_f64();
         msg.counters.insert(
-            shroud_core::metrics::names::DROPPED_MALFORMED.name.into(),
+            shroud_graph::metrics::names::DROPPED_MALFORMED.name.into(),
             self.dropped_malformed.load(Ordering::Relaxed),
         );
         for (name, child) in self.lock().iter() {
@@ -119,7 +119,7 @@ mod tests {
         assert_eq!(msg.labels["pid.fit"], "11");
         assert_eq!(msg.labels["state.fit"], "running");
         assert_eq!(
-            msg.counter(shroud_core::metrics::names::DROPPED_MALFORMED.name),
+            msg.counter(shroud_graph::metrics::names::DROPPED_MALFORMED.name),
             1
         );
     }

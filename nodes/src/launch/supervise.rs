@@ -9,7 +9,7 @@ use super::plan::PlannedNode;
 use super::roster::{self, Roster};
 use crate::transport::{shutdown_signal, OnOff, ZenohArgs};
 use anyhow::Result;
-use shroud_core::launch::{Backoff, LaunchFile, RestartDecision};
+use shroud_graph::launch::{Backoff, LaunchFile, RestartDecision};
 use std::time::{Duration, Instant};
 use tokio::sync::watch;
 use tokio::task::JoinSet;

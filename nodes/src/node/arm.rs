@@ -4,14 +4,14 @@
 //! stale surrogate, or a guard that falls silent halts it; it resumes where it
 //! stopped once the guard clears it again (wait and resume).
 
-use super::arm_file::{joint_names, read_arm_file};
-use super::runtime::{run_node, NodeCommon, NodeContext};
+use crate::arm_file::{joint_names, read_arm_file};
+use crate::runtime::{run_node, NodeCommon, NodeContext};
 use crate::transport::{monotonic_ns, unix_ns};
 use anyhow::{Context, Result};
 use clap::Args;
-use shroud_core::guard::{ArmFile, Deadman, Motion, ResumeAfter, Trajectory, VerdictUse};
-use shroud_core::message::{CollisionMessage, GuardVerdict, JointStateMessage, TopicKind};
-use shroud_core::metrics::names::{self as metric, Counter};
+use shroud_graph::metrics::names::{self as metric, Counter};
+use shroud_guard::{ArmFile, Deadman, Motion, ResumeAfter, Trajectory, VerdictUse};
+use shroud_msg::{CollisionMessage, GuardVerdict, JointStateMessage, TopicKind};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};

@@ -7,17 +7,17 @@
 //! announce the palette (`blend.stream`, `blend.output`, `blend.parts`) for
 //! dashboards.
 
-use super::runtime::{run_node, NodeCommon, NodeContext};
 use crate::args::{points3, BlendShapeArgs};
 use crate::files;
+use crate::runtime::{run_node, NodeCommon, NodeContext};
 use crate::transport::{unix_ns, Mailbox, PayloadWriter};
 use anyhow::{Context, Result};
 use clap::Args;
-use shroud_core::blend::{
+use shroud_graph::metrics::names as metric;
+use shroud_msg::{BlendCommandMessage, CloudMessage, CloudView, SensorPose, TopicKind};
+use shroud_shapes::blend::{
     supersede_indices, BlendCommand, BlendParams, BlendSession, Child, PolygonOfInterest, Prepared,
 };
-use shroud_core::message::{BlendCommandMessage, CloudMessage, CloudView, SensorPose, TopicKind};
-use shroud_core::metrics::names as metric;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};

@@ -5,18 +5,18 @@
 //! the robot's frame. Either way each cloud is published on `cloud/<stream>`.
 
 use super::device_status::{mirror_driver_counters, report_health, report_identity, report_state};
-use super::runtime::{run_node, NodeCommon, NodeContext};
 use super::scan_publisher::{cloud_publisher, max_skew_ns, mirror_reader_counters, CloudOut};
 use crate::args::CanDeviceArgs;
 use crate::ingest::{
     host_now, run_can_device, run_can_reader, BackoffConfig, BusStats, CanReaderConfig,
     CanSourceSpec,
 };
+use crate::runtime::{run_node, NodeCommon, NodeContext};
 use anyhow::Result;
 use clap::Args;
-use shroud_core::ingest::can_device::{CanDeviceDriver, CanDriverOutput, SensorCloud};
-use shroud_core::ingest::device::DeviceState;
-use shroud_core::metrics::names as metric;
+use shroud_drivers::can_device::{CanDeviceDriver, CanDriverOutput, SensorCloud};
+use shroud_drivers::device::DeviceState;
+use shroud_graph::metrics::names as metric;
 use std::sync::Arc;
 
 #[derive(Debug, Clone, Args)]

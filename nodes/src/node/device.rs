@@ -4,18 +4,16 @@
 //! mount's angle, when it comes from a joint, arrives on `joints/<name>`.
 
 use super::device_status::{mirror_driver_counters, report_health, report_identity, report_state};
-use super::runtime::NodeContext;
 use super::scan_publisher::CloudOut;
 use crate::args::CloudArgs;
 use crate::ingest::{host_now, run_device, DevicePortConfig, PortStats};
+use crate::runtime::NodeContext;
 use crate::transport::unix_ns;
 use anyhow::Result;
-use shroud_core::ingest::assembly::{AssembledCloud, CloudAssembler, MountMotion};
-use shroud_core::ingest::device::{
-    DeviceDriver, DeviceState, DeviceStats, DriverOutput, RangeScan,
-};
-use shroud_core::message::{check_stamp_skew, JointStateMessage, TopicKind};
-use shroud_core::metrics::names::{self as metric, Counter};
+use shroud_drivers::assembly::{AssembledCloud, CloudAssembler, MountMotion};
+use shroud_drivers::device::{DeviceDriver, DeviceState, DeviceStats, DriverOutput, RangeScan};
+use shroud_graph::metrics::names::{self as metric, Counter};
+use shroud_msg::{check_stamp_skew, JointStateMessage, TopicKind};
 use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TrySendError};
 use std::sync::Arc;
 use std::time::Duration;

@@ -3,12 +3,12 @@
 //! adapter), supervised by a launch file, with its line's counters in the
 //! node's status.
 
-use super::runtime::{run_node, NodeCommon};
 use crate::args::EmulatorArgs;
 use crate::ingest::run_emulator;
+use crate::runtime::{run_node, NodeCommon};
 use anyhow::{Context, Result};
 use clap::Args;
-use shroud_core::metrics::names as metric;
+use shroud_graph::metrics::names as metric;
 
 #[derive(Debug, Clone, Args)]
 pub struct DeviceSimArgs {

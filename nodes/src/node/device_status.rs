@@ -2,9 +2,9 @@
 //! serial and the CAN drivers: its state, identity and health as labels, and
 //! its driver's counters.
 
-use super::runtime::NodeContext;
-use shroud_core::ingest::device::{DeviceState, DeviceStats};
-use shroud_core::metrics::names::{self as metric, Counter};
+use crate::runtime::NodeContext;
+use shroud_drivers::device::{DeviceState, DeviceStats};
+use shroud_graph::metrics::names::{self as metric, Counter};
 
 /// Labels that describe the node, not the device on its port.
 const KEPT_LABELS: [&str; 3] = ["device.kind", "device.state", "device.clock"];

@@ -2,15 +2,16 @@
 //! subscriber hands payloads to a bounded drop-oldest mailbox; one worker thread
 //! decodes, fits with warm start, and publishes.
 
-use super::runtime::{run_node, NodeCommon, NodeContext};
 use crate::args::SurrogateShapeArgs;
+use crate::runtime::{run_node, NodeCommon, NodeContext};
 use crate::transport::{sample_published_ns, unix_ns, Mailbox};
 use anyhow::Result;
 use clap::Args;
-use shroud_core::message::{counted_transit, CloudView, MessageError, SurrogateMessage, TopicKind};
-use shroud_core::metrics::names as metric;
-use shroud_core::metrics::{Percentiles, SequenceGaps};
-use shroud_core::surrogate::{FitError, Sides, SurrogateFitter};
+use shroud_graph::metrics::names as metric;
+use shroud_graph::metrics::{Percentiles, SequenceGaps};
+use shroud_msg::{counted_transit, CloudView, MessageError, SurrogateMessage, TopicKind};
+use shroud_surrogate::SurrogateWire;
+use shroud_surrogate::{FitError, Sides, SurrogateFitter};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use zenoh::bytes::ZBytes;

@@ -3,18 +3,19 @@
 //! every joint state, usable or not, with a verdict: silence always means
 //! trouble to the consumer's deadman.
 
-use super::arm_file::{joint_names, read_arm_file};
-use super::runtime::{run_node, NodeCommon, NodeContext};
+use crate::arm_file::{joint_names, read_arm_file};
+use crate::runtime::{run_node, NodeCommon, NodeContext};
 use crate::transport::{monotonic_ns, sample_published_ns, unix_ns};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
-use shroud_core::guard::{
+use shroud_graph::metrics::names::{self as metric, Counter};
+use shroud_guard::{
     ArmFile, CollisionGuard, Decision, Envelope, GuardPolicy, SurrogateInput, UnobservedPolicy,
 };
-use shroud_core::message::{
+use shroud_msg::{
     max_skew_ns_from_secs, CollisionMessage, JointStateMessage, SurrogateMessage, TopicKind,
 };
-use shroud_core::metrics::names::{self as metric, Counter};
+use shroud_surrogate::SurrogateWire;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};

@@ -4,7 +4,7 @@
 use crate::introspect::ToolArgs;
 use anyhow::Result;
 use clap::Args;
-use shroud_core::message::{NodeStatusMessage, TopicKey, TopicKind};
+use shroud_msg::{NodeStatusMessage, TopicKey, TopicKind};
 use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;

@@ -2,7 +2,6 @@
 //! and `shroud node list`.
 
 mod arm;
-mod arm_file;
 mod blend;
 mod can;
 mod dashboard;
@@ -13,16 +12,14 @@ mod fit;
 mod foxglove_bridge;
 mod guard;
 mod list;
-mod metrics;
-mod runtime;
 mod scan_publisher;
 mod scanner;
 mod serial;
 mod smooth;
 mod viewer;
 
+pub use crate::runtime::{run_node, NodeCommon, NodeContext, NodeMetrics};
 pub use arm::ArmArgs;
-pub(crate) use arm_file::read_arm_file;
 pub use blend::BlendNodeArgs;
 pub use can::CanNodeArgs;
 pub use dashboard::DashboardArgs;
@@ -31,8 +28,6 @@ pub use fit::FitNodeArgs;
 pub use foxglove_bridge::FoxgloveArgs;
 pub use guard::GuardArgs;
 pub use list::NodeListArgs;
-pub use metrics::NodeMetrics;
-pub use runtime::{run_node, NodeCommon, NodeContext};
 pub use scanner::ScannerArgs;
 pub use serial::SerialNodeArgs;
 pub use smooth::SmoothNodeArgs;

@@ -3,13 +3,13 @@
 //! the protocol reader's counters (decode errors, disconnects, reopenings)
 //! into the node's status.
 
-use super::runtime::NodeContext;
 use crate::ingest::ReaderStats;
+use crate::runtime::NodeContext;
 use crate::transport::{unix_ns, PayloadWriter};
 use anyhow::Result;
-use shroud_core::ingest::Scan;
-use shroud_core::message::{check_stamp_skew, max_skew_ns_from_secs, SensorPose, TopicKind};
-use shroud_core::metrics::names as metric;
+use shroud_drivers::Scan;
+use shroud_graph::metrics::names as metric;
+use shroud_msg::{check_stamp_skew, max_skew_ns_from_secs, SensorPose, TopicKind};
 use std::sync::Arc;
 use std::time::Instant;
 use zenoh::Wait;

@@ -2,13 +2,13 @@
 //! a fixed-rate clock; a frame that cannot be produced in time is skipped and
 //! counted rather than delaying every later one.
 
-use super::runtime::{run_node, NodeCommon, NodeContext};
+use crate::runtime::{run_node, NodeCommon, NodeContext};
 use crate::transport::unix_ns;
 use anyhow::{Context, Result};
 use clap::Args;
-use shroud_core::format::parse_triangle_mesh;
-use shroud_core::message::{CloudView, SensorPose, TopicKind};
-use shroud_core::metrics::names as metric;
+use shroud_graph::metrics::names as metric;
+use shroud_msg::{CloudView, SensorPose, TopicKind};
+use shroud_shapes::format::parse_triangle_mesh;
 use shroud_sim::{RangeScanner, ScanResolution, Scene};
 use std::sync::Arc;
 use std::time::{Duration, Instant};

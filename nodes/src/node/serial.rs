@@ -4,13 +4,13 @@
 //! and the scan-to-cloud assembly of its mount.
 
 use super::device::run_device_clouds;
-use super::runtime::{run_node, NodeCommon};
 use super::scan_publisher::{cloud_publisher, max_skew_ns};
 use crate::args::{CloudArgs, DeviceArgs};
 use crate::ingest::{run_serial_reader, DevicePortConfig, SerialReaderConfig};
+use crate::runtime::{run_node, NodeCommon};
 use anyhow::{bail, Result};
 use clap::Args;
-use shroud_core::ingest::assembly::{MountPose, MovingMount};
+use shroud_drivers::assembly::{MountPose, MovingMount};
 
 #[derive(Debug, Clone, Args)]
 pub struct SerialNodeArgs {
@@ -38,7 +38,7 @@ pub fn run_serial(args: SerialNodeArgs) -> Result<()> {
     // Every setting is checked before the node starts.
     let driver = args.device.driver()?;
     let assembly = args.clouds.assembly()?;
-    shroud_core::ingest::assembly::CloudAssembler::new(assembly.clone())?;
+    shroud_drivers::assembly::CloudAssembler::new(assembly.clone())?;
     let common = args.common.clone();
     match driver {
         None => {

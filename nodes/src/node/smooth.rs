@@ -5,14 +5,15 @@
 //! parameter correction) and publishes the patches with their error measures.
 //! Points outside the domain are skipped and counted.
 
-use super::runtime::{run_node, NodeCommon, NodeContext};
 use crate::args::SmoothDomainArgs;
+use crate::runtime::{run_node, NodeCommon, NodeContext};
 use crate::transport::{unix_ns, Mailbox};
 use anyhow::Result;
 use clap::Args;
-use shroud_core::message::{CloudView, SmoothFitReport, SmoothPatchesMessage, TopicKind};
-use shroud_core::metrics::names as metric;
-use shroud_core::smooth::{Parametrisation, SmoothFitter, SmoothSurface};
+use shroud_graph::metrics::names as metric;
+use shroud_msg::{CloudView, TopicKind};
+use shroud_shapes::smooth::{patches_message, SmoothFitReport};
+use shroud_shapes::smooth::{Parametrisation, SmoothFitter, SmoothSurface};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use zenoh::bytes::ZBytes;
@@ -121,7 +122,7 @@ fn fit_one(
     setup: &FitSetup<'_>,
     previous: Option<&SmoothSurface>,
     payload: &ZBytes,
-) -> Result<Option<(Vec<u8>, SmoothSurface)>, shroud_core::message::MessageError> {
+) -> Result<Option<(Vec<u8>, SmoothSurface)>, shroud_msg::MessageError> {
     let FitSetup {
         fitter,
         parametrisation,
@@ -173,6 +174,6 @@ fn fit_one(
         errors,
         fit_ns,
     };
-    let bytes = SmoothPatchesMessage::new(&fitter.domain.mesh, &surface, &report).to_bytes()?;
+    let bytes = patches_message(&fitter.domain.mesh, &surface, &report).to_bytes()?;
     Ok(Some((bytes, surface)))
 }

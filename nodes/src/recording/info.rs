@@ -6,7 +6,7 @@
 //! an empty, foreign or corrupt file.
 
 use super::reader::{read_records, Ending};
-use crate::cli::ExitWith;
+use crate::exit::ExitWith;
 use anyhow::{Context, Result};
 use clap::Args;
 use mcap::records::Record;

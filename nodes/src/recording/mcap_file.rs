@@ -1,12 +1,12 @@
 //! One MCAP file being written: the `mcap` crate's writer over a buffered
-//! file, shroud's schemas and channels (core's [`layout`]) and those of the
+//! file, shroud's schemas and channels (`shroud-record`'s [`layout`]) and those of the
 //! Foxglove views added on first use,
 //! a sequence per channel, and the bytes and messages written so far.
 
 use super::views::View;
 use anyhow::{Context, Result};
-use shroud_core::message::{TopicKey, TopicKind};
-use shroud_core::record::layout::{self, MESSAGE_ENCODING, RECORDING_METADATA};
+use shroud_msg::{TopicKey, TopicKind};
+use shroud_record::layout::{self, MESSAGE_ENCODING, RECORDING_METADATA};
 use std::collections::{BTreeMap, HashMap};
 use std::fs::File;
 use std::io::{BufWriter, Seek, SeekFrom, Write};

@@ -2,7 +2,7 @@
 //! MCAP file (exactly as they travelled), `shroud replay` publishes them
 //! again with their timing, `shroud mcap info` says what a file holds, even
 //! a truncated one. The decisions (topic filters, layout, chunks, splits,
-//! drops, replay timing) are core's (`shroud_core::record`); this is the I/O.
+//! drops, replay timing) are `shroud_record`'s; this is the I/O.
 
 mod disk;
 mod info;

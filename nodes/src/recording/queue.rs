@@ -1,8 +1,8 @@
 //! The recorder's queue between zenoh's callbacks and the writer thread:
-//! core's byte-bounded drop-newest [`ByteQueue`] behind a lock, with a wake-up
+//! `shroud-record`'s byte-bounded drop-newest [`ByteQueue`] behind a lock, with a wake-up
 //! for the writer and a close that wakes it for good.
 
-use shroud_core::record::ByteQueue;
+use shroud_record::ByteQueue;
 use std::sync::{Condvar, Mutex, MutexGuard};
 use std::time::Duration;
 

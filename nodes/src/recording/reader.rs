@@ -1,11 +1,11 @@
-//! An MCAP file read from start to end with core's tolerant reader
-//! ([`shroud_core::record::read_records`]: streaming, one chunk in memory at
+//! An MCAP file read from start to end with `shroud-record`'s tolerant reader
+//! ([`shroud_record::read_records`]: streaming, one chunk in memory at
 //! a time, a truncated file read up to its cut); errors name the file.
 
 use anyhow::{Context, Result};
 use mcap::records::Record;
-use shroud_core::record::read_records as read_bytes;
-pub use shroud_core::record::Ending;
+use shroud_record::read_records as read_bytes;
+pub use shroud_record::Ending;
 use std::fs::File;
 use std::io::BufReader;
 use std::path::Path;

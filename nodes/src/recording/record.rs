@@ -9,16 +9,15 @@ use super::queue::WriteQueue;
 use super::shared::Recording;
 use super::views::{FoxgloveViews, ViewSettings};
 use super::writer::{run_writer, Arrival, WriterPlan, WrittenFile};
-use crate::node::{read_arm_file, run_node, NodeCommon, NodeContext};
+use crate::arm_file::read_arm_file;
+use crate::runtime::{run_node, NodeCommon, NodeContext};
 use crate::transport::unix_ns;
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use shroud_core::message::TopicKey;
-use shroud_core::metrics::names as metric;
-use shroud_core::record::layout::recording_metadata;
-use shroud_core::record::{
-    split_path, ChunkPolicy, DiskReserve, DropCause, SplitPolicy, TopicFilter,
-};
+use shroud_graph::metrics::names as metric;
+use shroud_msg::TopicKey;
+use shroud_record::layout::recording_metadata;
+use shroud_record::{split_path, ChunkPolicy, DiskReserve, DropCause, SplitPolicy, TopicFilter};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};

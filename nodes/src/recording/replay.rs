@@ -1,20 +1,20 @@
 //! `shroud replay FILE` (also the node kind `replay` of launch files):
 //! publishes the shroud messages of a recording (its `msgpack` channels; the
 //! Foxglove ones are for viewers) into `--namespace`, each on its recorded
-//! topic kind and name, by log time (core's [`ReplaySchedule`]), pass after
+//! topic kind and name, by log time (`shroud-record`'s [`ReplaySchedule`]), pass after
 //! pass with `--loop`. The file is streamed, one chunk in memory at a time; a
 //! truncated file is replayed up to its last complete chunk, with a warning.
 
 use super::reader::{read_records, Ending};
-use crate::node::{run_node, NodeCommon, NodeContext};
+use crate::runtime::{run_node, NodeCommon, NodeContext};
 use crate::transport::{unix_ns, PayloadWriter};
 use anyhow::Result;
 use clap::Args;
 use mcap::records::Record;
-use shroud_core::message::{CloudMessage, JointStateMessage, TopicKey, TopicKind};
-use shroud_core::metrics::names as metric;
-use shroud_core::record::layout::{replayable, ChannelDescription};
-use shroud_core::record::{Pace, ReplaySchedule, TopicFilter};
+use shroud_graph::metrics::names as metric;
+use shroud_msg::{CloudMessage, JointStateMessage, TopicKey, TopicKind};
+use shroud_record::layout::{replayable, ChannelDescription};
+use shroud_record::{Pace, ReplaySchedule, TopicFilter};
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::Arc;

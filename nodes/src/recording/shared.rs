@@ -2,9 +2,9 @@
 //! share: the counts (taken, written, dropped by topic and cause, also kept in
 //! the node's status counters) and whether the writer still takes messages.
 
-use crate::node::NodeMetrics;
-use shroud_core::metrics::names::{self as metric, Counter};
-use shroud_core::record::{DropCause, DropCounts};
+use crate::runtime::NodeMetrics;
+use shroud_graph::metrics::names::{self as metric, Counter};
+use shroud_record::{DropCause, DropCounts};
 use std::sync::{Arc, Mutex, MutexGuard};
 
 pub struct Recording {

@@ -16,12 +16,13 @@ use crate::to_foxglove::{
     VERDICT_PERIOD_NS,
 };
 use foxglove::{Encode, Schema};
-use shroud_core::guard::{ArmModel, VerdictWatch};
-use shroud_core::message::{
+use shroud_guard::{ArmModel, VerdictWatch};
+use shroud_msg::{
     CloudView, CollisionMessage, JointStateMessage, NodeStatusMessage, SurrogateMessage, TopicKey,
     TopicKind,
 };
-use shroud_core::scene::pose_arm;
+use shroud_surrogate::SurrogateWire;
+use shroud_viewers::scene::pose_arm;
 use std::collections::BTreeMap;
 
 /// One Foxglove message ready for its channel.
@@ -226,7 +227,7 @@ impl FoxgloveViews {
 mod tests {
     use super::*;
     use crate::to_foxglove::fixtures::collision;
-    use shroud_core::message::{CloudMessage, SensorPose};
+    use shroud_msg::{CloudMessage, SensorPose};
 
     fn views() -> FoxgloveViews {
         FoxgloveViews::new(ViewSettings {

@@ -1,5 +1,5 @@
 //! The recorder's writer thread: takes arrivals off the queue and writes them
-//! to the MCAP file, closing chunks by core's [`ChunkPolicy`], checking free
+//! to the MCAP file, closing chunks by `shroud-record`'s [`ChunkPolicy`], checking free
 //! space (statvfs) before each chunk against the [`DiskReserve`], starting a
 //! new file by the [`SplitPolicy`], and ending the file whatever happens: on
 //! a full disk it stops taking messages (they are counted as drops) and
@@ -13,8 +13,8 @@ use super::shared::Recording;
 use super::views::FoxgloveViews;
 use crate::transport::unix_ns;
 use anyhow::Result;
-use shroud_core::message::TopicKey;
-use shroud_core::record::{split_path, ChunkPolicy, DiskReserve, DropCause, SplitPolicy};
+use shroud_msg::TopicKey;
+use shroud_record::{split_path, ChunkPolicy, DiskReserve, DropCause, SplitPolicy};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};

@@ -10,9 +10,9 @@ use foxglove::messages::{
     SpherePrimitive,
 };
 use glam::{DQuat, DVec3};
-use shroud_core::guard::VerdictWatch;
-use shroud_core::message::{CollisionMessage, GuardVerdict};
-use shroud_core::scene::{ClearanceBand, PosedArm};
+use shroud_guard::VerdictWatch;
+use shroud_msg::{CollisionMessage, GuardVerdict};
+use shroud_viewers::scene::{ClearanceBand, PosedArm};
 use std::collections::BTreeMap;
 
 /// Linear RGBA of a link no verdict speaks for (no guard yet, or a link the
@@ -66,7 +66,7 @@ pub fn arm_scene(
             (entity, band.map_or(NO_VERDICT_RGBA, |b| b.rgba()))
         })
         .collect();
-    // Shapes name their link by index into `links` (core's PosedArm).
+    // Shapes name their link by index into `links` (`shroud-guard`'s PosedArm).
     for (link, centre, radius) in arm.spheres() {
         if let Some((e, rgba)) = entities.get_mut(link) {
             e.spheres.push(sphere(centre, radius, *rgba));
@@ -133,9 +133,9 @@ pub fn arm_transforms(arm: &PosedArm, stamp_ns: u64) -> FrameTransforms {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use shroud_core::guard::ArmFile;
-    use shroud_core::message::JointStateMessage;
-    use shroud_core::scene::pose_arm;
+    use shroud_guard::ArmFile;
+    use shroud_msg::JointStateMessage;
+    use shroud_viewers::scene::pose_arm;
 
     const ARM: &str = r#"
 name = "two"

@@ -6,8 +6,8 @@
 use super::geometry::{identity, timestamp, WORLD_FRAME};
 use foxglove::messages::packed_element_field::NumericType;
 use foxglove::messages::{PackedElementField, PointCloud};
-use shroud_core::message::{CloudView, MessageError};
-use shroud_core::scene::Decimation;
+use shroud_msg::{CloudView, MessageError};
+use shroud_viewers::scene::Decimation;
 
 /// Bytes of one packed coordinate or intensity.
 const F32: usize = 4;
@@ -59,7 +59,7 @@ pub fn point_cloud(view: &CloudView<'_>, budget: usize) -> Result<PointCloud, Me
 #[cfg(test)]
 mod tests {
     use super::*;
-    use shroud_core::message::SensorPose;
+    use shroud_msg::SensorPose;
 
     fn floats(bytes: &[u8]) -> Vec<f32> {
         bytes

@@ -2,14 +2,14 @@
 //! and Raw Message panels: flat, named numeric fields (`min_clearance`,
 //! `upper.min_gap`, `counters.received`), JSON's `null` where a number is
 //! infinite or NaN (JSON has neither). Each derives its JSON Schema, which
-//! the channel advertises (FORMATS.md, "Foxglove channels").
+//! the channel advertises (`docs/formats.md`, "Foxglove channels").
 
 use schemars::JsonSchema;
 use serde::Serialize;
-use shroud_core::guard::ShownVerdict;
-use shroud_core::message::{GuardVerdict, NodeStatusMessage, SurrogateMessage};
-use shroud_core::scene::ClearanceBand;
-use shroud_core::surrogate::{Certificate, Side};
+use shroud_guard::ShownVerdict;
+use shroud_msg::{GuardVerdict, NodeStatusMessage, SurrogateMessage};
+use shroud_surrogate::{Certificate, Side};
+use shroud_viewers::scene::ClearanceBand;
 use std::collections::BTreeMap;
 
 /// What an arm's guard says, as a viewer shows it (a silent guard is
@@ -180,8 +180,9 @@ fn finite(x: f64) -> Option<f64> {
 mod tests {
     use super::*;
     use crate::to_foxglove::fixtures::collision;
-    use shroud_core::guard::VerdictWatch;
-    use shroud_core::surrogate::{fit_surrogate, FitOptions, Sides};
+    use shroud_guard::VerdictWatch;
+    use shroud_surrogate::SurrogateWire;
+    use shroud_surrogate::{fit_surrogate, FitOptions, Sides};
 
     #[test]
     fn a_verdict_names_bands_and_a_silent_guard_is_a_stop_without_numbers() {

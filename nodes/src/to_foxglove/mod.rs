@@ -3,7 +3,7 @@
 //! numeric fields the Plot panel reads: what the Foxglove bridge serves and
 //! what a recording stores beside the raw messages. Pure conversions of decoded
 //! messages, no server and no I/O; the geometry itself (decimation, trimmed
-//! meshes, the posed arm, clearance bands) is `shroud_core::scene`'s.
+//! meshes, the posed arm, clearance bands) is `shroud_viewers::scene`'s.
 
 mod arm;
 mod cloud;
@@ -31,7 +31,7 @@ pub use topics::{
 pub(crate) mod fixtures {
     //! Messages the conversions' tests share.
 
-    use shroud_core::message::{CollisionMessage, GuardVerdict, LinkClearance, SCHEMA_VERSION};
+    use shroud_msg::{CollisionMessage, GuardVerdict, LinkClearance, SCHEMA_VERSION};
 
     /// A clear verdict of arm `arm` with these (link, clearance, unobserved).
     pub fn collision(links: &[(&str, f64, bool)]) -> CollisionMessage {

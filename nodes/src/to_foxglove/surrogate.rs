@@ -8,9 +8,9 @@ use foxglove::messages::scene_entity_deletion::Type as DeletionType;
 use foxglove::messages::{
     KeyValuePair, SceneEntity, SceneEntityDeletion, SceneUpdate, TriangleListPrimitive,
 };
-use shroud_core::message::SurrogateMessage;
-use shroud_core::scene::{surrogate_meshes, SurfaceMesh};
-use shroud_core::surrogate::{Side, Surrogate};
+use shroud_msg::SurrogateMessage;
+use shroud_surrogate::{Side, Surrogate};
+use shroud_viewers::scene::{surrogate_meshes, SurfaceMesh};
 
 /// Linear RGBA of each side: the upper surface blue, the lower amber, both
 /// translucent so that the cloud between them shows.
@@ -91,7 +91,8 @@ fn surface_entity(stream: &str, msg: &SurrogateMessage, mesh: &SurfaceMesh) -> S
 #[cfg(test)]
 mod tests {
     use super::*;
-    use shroud_core::surrogate::{fit_surrogate, FitOptions, Sides};
+    use shroud_surrogate::SurrogateWire;
+    use shroud_surrogate::{fit_surrogate, FitOptions, Sides};
 
     fn fitted(sides: Sides) -> (SurrogateMessage, Surrogate) {
         let points: Vec<[f32; 3]> = (0..900)

@@ -1,7 +1,7 @@
 //! The Foxglove topic of each shroud stream, in one place so that the bridge
 //! and a recording name them alike.
 
-/// Where a Foxglove client publishes blend commands (JSON, FORMATS.md).
+/// Where a Foxglove client publishes blend commands (JSON, `docs/formats.md`).
 pub const BLEND_TOPIC: &str = "/shroud/blend";
 
 /// `foxglove.PointCloud` of cloud stream `stream`.

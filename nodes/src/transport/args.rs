@@ -3,7 +3,7 @@
 
 use anyhow::{Context, Result};
 use clap::Args;
-use shroud_core::message::Topics;
+use shroud_msg::Topics;
 use std::path::PathBuf;
 
 #[derive(Debug, Clone, Args)]

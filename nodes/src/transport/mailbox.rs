@@ -1,8 +1,8 @@
-//! A bounded queue between a zenoh callback and a worker thread, with core's
+//! A bounded queue between a zenoh callback and a worker thread, with `shroud-graph`'s
 //! drop-oldest backlog policy ([`DropOldest`]): a lock, a condition variable
 //! to wake the worker, and a close that wakes it for good.
 
-use shroud_core::backlog::DropOldest;
+use shroud_graph::backlog::DropOldest;
 use std::sync::{Condvar, Mutex, MutexGuard};
 use std::time::Duration;
 

@@ -2,7 +2,7 @@
 //! provider could be created (receivers on the same machine then map the buffer
 //! instead of receiving a copy over TCP); anything else takes the copy path.
 
-use shroud_core::message::{encode_into, encoded_len, MessageError};
+use shroud_msg::{encode_into, encoded_len, MessageError};
 use std::num::NonZeroUsize;
 use std::sync::atomic::{AtomicU64, Ordering};
 use zenoh::bytes::ZBytes;

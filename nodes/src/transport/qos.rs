@@ -2,7 +2,7 @@
 //! ([`TopicKind::qos`]): the one place that maps shroud's QoS table to zenoh's.
 
 use anyhow::Result;
-use shroud_core::message::{Congestion, TopicKind};
+use shroud_msg::{Congestion, TopicKind};
 use zenoh::qos::{CongestionControl, Priority};
 use zenoh::Wait;
 

@@ -2,7 +2,7 @@
 //! transmit queue that sends one frame at a time with CAN's arbitration (of
 //! the frames waiting when the bus frees, the lowest identifier goes first).
 
-use shroud_core::ingest::can::CanFrame;
+use shroud_drivers::can::CanFrame;
 use std::collections::VecDeque;
 
 /// Frames held for sending at most; further ones are dropped (counted), as a

@@ -5,7 +5,7 @@ use super::ars408::{Ars408Emulator, RadarConfig};
 use super::benewake::{BenewakeCanEmulator, BenewakeCanModel, UnitSpec};
 use super::emulator::CanDeviceEmulator;
 use crate::{Bvh, MovingSpheres};
-use shroud_core::ingest::assembly::MountPose;
+use shroud_drivers::assembly::MountPose;
 use std::sync::Arc;
 
 /// The models [`can_emulator`] makes.

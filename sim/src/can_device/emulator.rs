@@ -1,6 +1,6 @@
 //! What every CAN device emulator implements.
 
-use shroud_core::ingest::can::CanFrame;
+use shroud_drivers::can::CanFrame;
 
 /// A CAN device: fed the frames the host sends, asked what it sent by a
 /// given time. `now` is emulator time in seconds (monotonic from 0 at

@@ -2,7 +2,7 @@
 //! Benewake's CAN rangefinders. An emulator is fed the frames the host puts
 //! on the bus and asked what it sent by a given time; it measures a scene
 //! (moving spheres for the radar, a mesh for the rangefinders) and encodes
-//! every frame through the builtin DBCs of `shroud_core::ingest::dbc`, the
+//! every frame through the builtin DBCs of `shroud_drivers::dbc`, the
 //! same descriptions the drivers decode with. Pure: the caller carries the
 //! frames (an SLCAN pty, a candump log) and passes the time.
 

@@ -4,8 +4,8 @@
 //! nearest zero, so that a DBC adding a reserved signal does not break the
 //! emulator. A name the message lacks is still an error.
 
-use shroud_core::ingest::can::CanFrame;
-use shroud_core::ingest::dbc::{CanDatabase, DbcError, Multiplex, SignalSpec};
+use shroud_drivers::can::CanFrame;
+use shroud_drivers::dbc::{CanDatabase, DbcError, Multiplex, SignalSpec};
 
 /// The frame of `message` carrying `values` (by signal name).
 pub(crate) fn encode(

@@ -2,9 +2,10 @@
 //! can make any of them.
 
 use super::benewake::{BenewakeEmulator, BenewakeModel, BenewakeOptions};
-use super::emulator::{Faults, RaySource, SerialDeviceEmulator};
+use super::emulator::{Faults, SerialDeviceEmulator};
 use super::hokuyo::{HokuyoEmulator, HokuyoModel, HokuyoOptions, Link};
 use super::rplidar::{RplidarEmulator, RplidarModel, RplidarOptions};
+use crate::world::RaySource;
 
 /// The models [`emulator`] makes.
 pub const MODELS: [&str; 9] = [

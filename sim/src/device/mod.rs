@@ -6,7 +6,7 @@
 //! bytes (a pseudo-terminal in `shroud sensor-sim`) and passes the time.
 //!
 //! Written from the devices' manuals, independently of the drivers in
-//! `shroud_core::ingest`: the golden vectors in both test suites are the
+//! `shroud_drivers`: the golden vectors in both test suites are the
 //! arbiter, so a misreading in one is not copied into the other.
 
 pub mod benewake;
@@ -14,10 +14,7 @@ mod catalog;
 mod emulator;
 pub mod hokuyo;
 pub mod rplidar;
-mod slcan_adapter;
-mod world;
 
+pub use crate::world::{MeshRays, RayReturn, RaySource};
 pub use catalog::{emulator, EmulatorOptions, MODELS};
-pub use emulator::{Faults, RayReturn, RaySource, SerialDeviceEmulator};
-pub use slcan_adapter::SlcanAdapter;
-pub use world::MeshRays;
+pub use emulator::{Faults, SerialDeviceEmulator};

@@ -5,7 +5,7 @@
 
 use crate::error::SceneError;
 use glam::Vec3A;
-use shroud_core::format::TriangleMesh;
+use shroud_shapes::format::TriangleMesh;
 
 /// Bins of the surface-area heuristic along the split axis.
 const BINS: usize = 16;

@@ -18,9 +18,9 @@ use crate::sampling::{stream_rng, time_key};
 use rand::Rng;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use shroud_core::cloud::{dark_cones, EmptyRays};
-use shroud_core::format::TriangleMesh;
-use shroud_core::message::{Aperture, FieldOfView, NoReturn};
+use shroud_geometry::cloud::{dark_cones, EmptyRays};
+use shroud_msg::{Aperture, FieldOfView, NoReturn};
+use shroud_shapes::format::TriangleMesh;
 use std::f64::consts::{PI, TAU};
 
 /// Stream tag separating the scanner's random numbers from the scenes'.
@@ -98,7 +98,7 @@ pub struct ScanFrame {
     pub rays: usize,
     /// The directions in which rays returned nothing (missed the mesh, fell
     /// beyond the range or dropped out), as a driver states them in the
-    /// cloud ([`shroud_core::cloud::dark_cones`]); `None` when every group of
+    /// cloud ([`shroud_geometry::cloud::dark_cones`]); `None` when every group of
     /// empty rays is below the scan's resolution.
     pub no_return: Option<NoReturn>,
 }
@@ -486,7 +486,7 @@ mod tests {
     /// across states a sliver.
     #[test]
     fn the_stated_field_of_view_lies_within_the_rays() {
-        use shroud_core::guard::depth_inside;
+        use shroud_guard::depth_inside;
         for (columns, rows) in [(1, 1), (2, 3), (7, 1), (40, 30)] {
             let scanner = RangeScanner {
                 resolution: ScanResolution::Grid { columns, rows },

@@ -9,7 +9,7 @@ use crate::mesh_scene::{check_terrain_cells, DEFAULT_CYLINDER_SEGMENTS, DEFAULT_
 use crate::table_top::TableTop;
 use crate::terrain::Terrain;
 use serde::{Deserialize, Serialize};
-use shroud_core::format::TriangleMesh;
+use shroud_shapes::format::TriangleMesh;
 use std::fmt;
 use std::sync::{Arc, Mutex, PoisonError};
 
@@ -213,7 +213,7 @@ impl fmt::Debug for LoadedMesh {
 /// A range scanner over a user's triangle mesh. The serialized form names the
 /// mesh by `mesh_path` only: this crate does no file I/O, so whoever deserializes
 /// the scene reads that file (e.g. with
-/// `shroud_core::format::parse_triangle_mesh`) and attaches the mesh with
+/// `shroud_shapes::format::parse_triangle_mesh`) and attaches the mesh with
 /// [`MeshScan::attach_mesh`]. Until then scanning fails with
 /// [`SceneError::MeshNotLoaded`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -5,7 +5,7 @@
 use super::SoundnessError;
 use glam::{DAffine3, DQuat, DVec3};
 use rand::Rng;
-use shroud_core::guard::{ArmFile, ArmModel};
+use shroud_guard::{ArmFile, ArmModel};
 
 /// The demo arm's file, as the launcher loads it (base at z = 1.6, hanging).
 const DEMO_ARM: &str = include_str!("../../../launch/arms/demo_arm.toml");
@@ -112,7 +112,7 @@ pub fn random_configuration(arm: &ArmModel, rng: &mut impl Rng) -> Vec<f64> {
 mod tests {
     use super::*;
     use rand::SeedableRng;
-    use shroud_core::guard::Shape;
+    use shroud_guard::Shape;
 
     #[test]
     fn both_arms_load_and_random_poses_respect_limits() {

@@ -27,7 +27,7 @@ pub use scene::{SensorSetup, SoundnessScene};
 pub use sensors::{EmptyRayIndex, FieldOfView, Projection, Scan, Sensor};
 pub use solids::{Body, Solid};
 
-use shroud_core::guard::{GuardError, UnobservedPolicy};
+use shroud_guard::{GuardError, UnobservedPolicy};
 
 /// Why a soundness run could not run (never why a verdict was wrong: those
 /// are counted in the report).
@@ -80,7 +80,7 @@ pub struct SoundnessParams {
     /// never looked at.
     pub state_field_of_view: bool,
     /// Clouds list the directions in which their perspective sensor's rays
-    /// returned nothing (`shroud_core::cloud::dark_cones`), as a driver
+    /// returned nothing (`shroud_geometry::cloud::dark_cones`), as a driver
     /// that knows its ray grid can; the guard then counts them as unseen, so
     /// that a black solid between returns from the floor is not vouched for.
     pub state_no_return: bool,
@@ -135,8 +135,7 @@ impl SoundnessParams {
                 self.max_obstacle_speed,
             );
         }
-        if !(self.horizon.is_finite()
-            && (0.0..=shroud_core::guard::MAX_HORIZON).contains(&self.horizon))
+        if !(self.horizon.is_finite() && (0.0..=shroud_guard::MAX_HORIZON).contains(&self.horizon))
         {
             return bad("horizon", "must lie in [0, 1] s", self.horizon);
         }

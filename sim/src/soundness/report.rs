@@ -3,8 +3,8 @@
 //! themselves with a class each.
 
 use super::arms::ArmKind;
-use shroud_core::guard::Shape;
-use shroud_core::surrogate::Sides;
+use shroud_guard::Shape;
+use shroud_surrogate::Sides;
 use std::fmt;
 
 /// Most findings a report keeps (all are counted).

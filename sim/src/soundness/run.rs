@@ -14,11 +14,11 @@ use glam::DVec3;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rayon::prelude::*;
-use shroud_core::guard::{
+use shroud_guard::{
     check_shapes, CollisionGuard, Envelope, GuardConfig, GuardPolicy, SurrogateInput, WorldShape,
 };
-use shroud_core::message::{GuardVerdict, DEFAULT_MAX_CLOCK_OFFSET_NS};
-use shroud_core::surrogate::{fit_surrogate, FitOptions};
+use shroud_msg::{GuardVerdict, DEFAULT_MAX_CLOCK_OFFSET_NS};
+use shroud_surrogate::{fit_surrogate, FitOptions};
 
 /// The guard's monotonic clock reads this at scene time 0 (ns); its wall
 /// clock reads `WALL_OFFSET_NS` more. One axis, as the brief of the harness

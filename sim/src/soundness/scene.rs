@@ -9,7 +9,7 @@ use super::SoundnessParams;
 use glam::{DQuat, DVec3};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
-use shroud_core::surrogate::Sides;
+use shroud_surrogate::Sides;
 use std::f64::consts::{PI, SQRT_2};
 use std::fmt;
 

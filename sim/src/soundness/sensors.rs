@@ -6,8 +6,8 @@ use super::rays::{cast, Hit};
 use super::solids::Solid;
 use glam::DVec3;
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
-use shroud_core::cloud::{dark_cones, EmptyRays};
-use shroud_core::message;
+use shroud_geometry::cloud::{dark_cones, EmptyRays};
+use shroud_msg as message;
 
 /// The rays a sensor casts, as bounds on the image plane at unit distance
 /// (tangents of the half angles).
@@ -229,7 +229,7 @@ impl Sensor {
     }
 
     /// The scan's rays that returned nothing, as its driver would state them
-    /// in the cloud (`shroud_core::cloud::dark_cones`): perspective rays only
+    /// in the cloud (`shroud_geometry::cloud::dark_cones`): perspective rays only
     /// (parallel rays have no apex). Neighbouring rays are at most `step
     /// sqrt(2)` apart on the image plane at unit distance, which subtends at
     /// most that angle (the derivative of atan is at most 1).
@@ -501,7 +501,7 @@ mod tests {
                     );
                     let depth = sensor.depth_in_view(p);
                     if let Some(f) = &stated {
-                        let guard = shroud_core::guard::depth_inside(f, p);
+                        let guard = shroud_guard::depth_inside(f, p);
                         assert!((guard - depth).abs() < 1e-9, "{k}: {guard} vs {depth}");
                     }
                     if depth <= 0.0 {

@@ -13,7 +13,7 @@
 
 use super::solids::{floor_distance, point_segment_distance, Body, Solid};
 use glam::DVec3;
-use shroud_core::guard::{Shape, WorldShape};
+use shroud_guard::{Shape, WorldShape};
 
 /// Golden-section steps: the bracket shrinks to `0.618^60 ≈ 3e-13` of its
 /// start.

@@ -8,19 +8,20 @@ use super::hub::Hub;
 use crate::node::viewer::{Arrival, Inbox};
 use crate::node::NodeContext;
 use crate::transport::monotonic_ns;
-use shroud_core::dashboard::{
-    arm_frame, cloud_frame, hello_frame, nodes_frame, smooth_frame, surrogate_frame, verdict_frame,
-    BlendPalette, CloudFrameInput, DashboardCounts, Hello,
-};
-use shroud_core::guard::{ArmModel, VerdictWatch};
-use shroud_core::message::{
+use shroud_graph::metrics::names as metric;
+use shroud_graph::metrics::NodeHealth;
+use shroud_graph::pace::Paced;
+use shroud_guard::{ArmModel, VerdictWatch};
+use shroud_msg::{
     CloudView, CollisionMessage, JointStateMessage, NodeStatusMessage, SmoothPatchesMessage,
     SurrogateMessage, TopicKey, TopicKind,
 };
-use shroud_core::metrics::names as metric;
-use shroud_core::metrics::NodeHealth;
-use shroud_core::pace::Paced;
-use shroud_core::scene::pose_arm;
+use shroud_surrogate::SurrogateWire;
+use shroud_viewers::dashboard::{
+    arm_frame, cloud_frame, hello_frame, nodes_frame, smooth_frame, surrogate_frame, verdict_frame,
+    BlendPalette, CloudFrameInput, DashboardCounts, Hello,
+};
+use shroud_viewers::scene::pose_arm;
 use std::collections::BTreeMap;
 use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex};

@@ -13,8 +13,8 @@ use axum::http::{header, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use axum::Router;
-use shroud_core::dashboard::{blend_result_frame, error_frame, BrowserCommand};
-use shroud_core::metrics::names as metric;
+use shroud_graph::metrics::names as metric;
+use shroud_viewers::dashboard::{blend_result_frame, error_frame, BrowserCommand};
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 

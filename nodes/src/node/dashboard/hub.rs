@@ -1,9 +1,9 @@
 //! The browsers connected to the dashboard, each with one pending frame per
-//! (type, stream) (core's [`LatestByKey`]): the frame builder never waits for a
+//! (type, stream) (`shroud-graph`'s [`LatestByKey`]): the frame builder never waits for a
 //! browser, and a slow browser skips frames of a stream instead of queueing
 //! them (counted as superseded).
 
-use shroud_core::backlog::LatestByKey;
+use shroud_graph::backlog::LatestByKey;
 use std::collections::BTreeSet;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};

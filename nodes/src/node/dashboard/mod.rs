@@ -10,10 +10,10 @@ mod builder;
 mod http;
 mod hub;
 
-use super::arm_file::read_arm_file;
-use super::runtime::{run_node, NodeCommon, NodeContext};
 use super::viewer::{subscribe_drawables, watch_tokens, BlendSender, Inbox};
 use crate::args::take_web_listen;
+use crate::arm_file::read_arm_file;
+use crate::runtime::{run_node, NodeCommon, NodeContext};
 use anyhow::{Context, Result};
 use builder::{BuilderConfig, FrameBuilder, Shared};
 use clap::Args;

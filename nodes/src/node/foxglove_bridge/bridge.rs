@@ -17,15 +17,16 @@ use crate::to_foxglove::{
 use crate::transport::monotonic_ns;
 use foxglove::messages::{FrameTransforms, PointCloud, SceneUpdate};
 use foxglove::Context;
-use shroud_core::dashboard::BlendPalette;
-use shroud_core::guard::{ArmModel, VerdictWatch};
-use shroud_core::message::{
+use shroud_graph::metrics::names as metric;
+use shroud_graph::pace::Paced;
+use shroud_guard::{ArmModel, VerdictWatch};
+use shroud_msg::{
     CloudView, CollisionMessage, JointStateMessage, NodeStatusMessage, SurrogateMessage, TopicKey,
     TopicKind,
 };
-use shroud_core::metrics::names as metric;
-use shroud_core::pace::Paced;
-use shroud_core::scene::pose_arm;
+use shroud_surrogate::SurrogateWire;
+use shroud_viewers::dashboard::BlendPalette;
+use shroud_viewers::scene::pose_arm;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Duration;

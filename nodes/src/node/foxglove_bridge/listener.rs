@@ -1,5 +1,5 @@
 //! What Foxglove clients send the bridge: a JSON message on `/shroud/blend`
-//! (FORMATS.md) is checked and forwarded as a `BlendCommandMessage` to the
+//! (`docs/formats.md`) is checked and forwarded as a `BlendCommandMessage` to the
 //! blend node the bridge drives; anything else a client publishes is logged
 //! and counted as malformed. A client's subscription asks the bridge to send
 //! the channel's latest message again (a still surrogate would otherwise
@@ -10,10 +10,10 @@ use crate::node::viewer::BlendSender;
 use crate::node::NodeContext;
 use crate::to_foxglove::BLEND_TOPIC;
 use foxglove::websocket::{ChannelView, Client, ClientChannel, ServerListener};
-use shroud_core::blend::BlendCommand;
-use shroud_core::dashboard::BlendPalette;
-use shroud_core::message::BlendRequest;
-use shroud_core::metrics::names as metric;
+use shroud_graph::metrics::names as metric;
+use shroud_msg::BlendRequest;
+use shroud_shapes::blend::BlendCommand;
+use shroud_viewers::dashboard::BlendPalette;
 use std::collections::BTreeSet;
 use std::sync::{Arc, Mutex, MutexGuard};
 

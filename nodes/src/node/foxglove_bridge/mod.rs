@@ -10,10 +10,10 @@ mod bridge;
 mod channels;
 mod listener;
 
-use super::arm_file::read_arm_file;
-use super::runtime::{run_node, NodeCommon, NodeContext};
 use super::viewer::{subscribe_drawables, BlendSender, Inbox};
 use crate::args::take_web_listen;
+use crate::arm_file::read_arm_file;
+use crate::runtime::{run_node, NodeCommon, NodeContext};
 use crate::to_foxglove::SURFACE_PER_CELL;
 use anyhow::{Context as _, Result};
 use bridge::{Bridge, BridgeConfig};

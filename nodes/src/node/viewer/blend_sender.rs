@@ -3,10 +3,10 @@
 
 use crate::node::NodeContext;
 use crate::transport::unix_ns;
-use shroud_core::blend::BlendCommand;
-use shroud_core::dashboard::BlendPalette;
-use shroud_core::message::{BlendCommandMessage, TopicKind};
-use shroud_core::metrics::names as metric;
+use shroud_graph::metrics::names as metric;
+use shroud_msg::{BlendCommandMessage, TopicKind};
+use shroud_shapes::blend::BlendCommand;
+use shroud_viewers::dashboard::BlendPalette;
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;

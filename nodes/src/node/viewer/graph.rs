@@ -4,7 +4,7 @@
 use super::inbox::Inbox;
 use crate::node::NodeContext;
 use anyhow::Result;
-use shroud_core::message::{TopicKey, TopicKind};
+use shroud_msg::{TopicKey, TopicKind};
 use std::sync::mpsc;
 use std::sync::Arc;
 use zenoh::sample::SampleKind;

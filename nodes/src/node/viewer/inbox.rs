@@ -5,10 +5,10 @@
 //! slot swap.
 
 use crate::transport::monotonic_ns;
-use shroud_core::backlog::LatestByKey;
-use shroud_core::dashboard::TopicRate;
-use shroud_core::message::{TopicKey, TopicKind};
-use shroud_core::metrics::RateMeter;
+use shroud_graph::backlog::LatestByKey;
+use shroud_graph::metrics::RateMeter;
+use shroud_msg::{TopicKey, TopicKind};
+use shroud_viewers::dashboard::TopicRate;
 use std::collections::BTreeMap;
 use std::sync::{Condvar, Mutex, MutexGuard};
 use std::time::Duration;

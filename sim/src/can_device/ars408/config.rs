@@ -1,7 +1,7 @@
 //! The radar's configuration, as 0x200 RadarConfiguration sets it and 0x201
 //! RadarState reports it (sensors.md §2.2; Continental's ARS408 DBC).
 
-use shroud_core::ingest::dbc::DecodedMessage;
+use shroud_drivers::dbc::DecodedMessage;
 
 /// What the radar sends each cycle (0x201 OutputTypeCfg / 0x200 OutputType).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -17,9 +17,9 @@ use crate::can_device::CanDeviceEmulator;
 use crate::MovingSpheres;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
-use shroud_core::ingest::assembly::MountPose;
-use shroud_core::ingest::can::CanFrame;
-use shroud_core::ingest::dbc::{builtin, CanDatabase, DbcError};
+use shroud_drivers::assembly::MountPose;
+use shroud_drivers::can::CanFrame;
+use shroud_drivers::dbc::{builtin, CanDatabase, DbcError};
 
 /// The radar's bus: 500 kbit/s.
 pub const BITRATE: u32 = 500_000;

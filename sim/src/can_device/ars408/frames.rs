@@ -1,12 +1,12 @@
 //! The ARS408-21's frames, encoded through the builtin DBC
-//! (`shroud_core::ingest::dbc::builtin("ars408")`): RadarState, VersionID,
+//! (`shroud_drivers::dbc::builtin("ars408")`): RadarState, VersionID,
 //! and the cluster and object cycles (sensors.md §2.2).
 
 use super::config::RadarConfig;
 use super::scene::{Detection, Target, NEAR_RANGE_M};
 use crate::can_device::signals::encode;
-use shroud_core::ingest::can::CanFrame;
-use shroud_core::ingest::dbc::{CanDatabase, DbcError};
+use shroud_drivers::can::CanFrame;
+use shroud_drivers::dbc::{CanDatabase, DbcError};
 
 /// Clusters per cycle at most: IDs are 8 bits, and the two 8-bit counts of
 /// 0x600 sum to at most this in practice (the radar reports up to 250).

@@ -7,7 +7,7 @@
 
 use crate::MovingSpheres;
 use glam::DVec3;
-use shroud_core::ingest::assembly::MountPose;
+use shroud_drivers::assembly::MountPose;
 
 /// Half the azimuth field of view: the ARS408-21's near scan covers ±60°.
 pub const HALF_AZIMUTH_DEG: f64 = 60.0;

@@ -17,13 +17,13 @@ use super::settings::CanSettings;
 use crate::can_device::bus::Transmitter;
 use crate::can_device::signals::encode;
 use crate::can_device::CanDeviceEmulator;
-use crate::device::{MeshRays, RaySource};
+use crate::world::{MeshRays, RaySource};
 use crate::Bvh;
 use rand::SeedableRng;
 use rand_pcg::Pcg64;
-use shroud_core::ingest::assembly::{MountPose, MovingMount};
-use shroud_core::ingest::can::CanFrame;
-use shroud_core::ingest::dbc::{builtin, CanDatabase};
+use shroud_drivers::assembly::{MountPose, MovingMount};
+use shroud_drivers::can::CanFrame;
+use shroud_drivers::dbc::{builtin, CanDatabase};
 use std::sync::Arc;
 
 /// Units one emulator drives at most.
@@ -363,7 +363,7 @@ impl BenewakeCanEmulator {
 /// LE), 0x52 bit rate (u32 LE), 0x5D frame type (0 standard, 1 extended).
 /// Returns whether the command was taken.
 fn tf03_setting(pending: &mut CanSettings, code: u8, payload: &[u8]) -> bool {
-    let id = u32_le(payload, 0).filter(|&id| id <= shroud_core::ingest::can::MAX_EXTENDED_ID);
+    let id = u32_le(payload, 0).filter(|&id| id <= shroud_drivers::can::MAX_EXTENDED_ID);
     match (code, payload.len()) {
         (id::TX_ID, 4) => id.map(|id| pending.tx_id = id).is_some(),
         (id::RX_ID_OR_CAN_SETTING, 4) => id.map(|id| pending.rx_id = id).is_some(),
@@ -397,7 +397,7 @@ fn industrial_setting(pending: &mut CanSettings, payload: &[u8]) -> bool {
     if payload.len() != 10 || kind > 1 {
         return false;
     }
-    let max = shroud_core::ingest::can::MAX_EXTENDED_ID;
+    let max = shroud_drivers::can::MAX_EXTENDED_ID;
     if rx > max || tx > max {
         return false;
     }

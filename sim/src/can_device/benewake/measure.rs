@@ -7,7 +7,7 @@
 //! model's minimum reliable strength.
 
 use super::model::CanModelSpec;
-use crate::device::RaySource;
+use crate::world::RaySource;
 use rand::Rng;
 use rand_pcg::Pcg64;
 

@@ -44,7 +44,7 @@ pub(crate) enum Commands {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct CanModelSpec {
     pub name: &'static str,
-    /// `shroud_core::ingest::dbc::builtin` name and the data message in it.
+    /// `shroud_drivers::dbc::builtin` name and the data message in it.
     pub dbc: &'static str,
     pub message: &'static str,
     pub layout: Layout,
@@ -155,7 +155,7 @@ const TF03: CanModelSpec = CanModelSpec {
 
 /// TFmini-i-CAN (SJ-PM-TFmini-i A01 §3.2): 250 kbit/s, 0x003. Its manual
 /// gives no invalid-reading rule; the emulator uses its UART sibling's, the
-/// TFmini Plus (sensors.md §1.3, as in `shroud_core::ingest::benewake`):
+/// TFmini Plus (sensors.md §1.3, as in `shroud_drivers::benewake`):
 /// Dist 0 when strength < 100; 12 m.
 const TFMINI_I: CanModelSpec = CanModelSpec {
     name: "tfmini-i-can",

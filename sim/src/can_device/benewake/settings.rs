@@ -1,7 +1,7 @@
 //! A unit's CAN settings, in the three copies a Benewake unit keeps: the ones
 //! it runs with, the ones commands have set since, and the saved ones.
 
-use shroud_core::ingest::can::{MAX_EXTENDED_ID, MAX_STANDARD_ID};
+use shroud_drivers::can::{MAX_EXTENDED_ID, MAX_STANDARD_ID};
 
 /// Ids, frame type and bit rate of one unit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -7,9 +7,9 @@ use crate::can_device::ars408::{OutputType, RadarConfig, CYCLE_PERIOD_S, STATIC_
 use crate::can_device::{can_emulator, CanDeviceEmulator, CanEmulatorOptions, CanWorld};
 use crate::MovingSpheres;
 use glam::DVec3;
-use shroud_core::ingest::assembly::MountPose;
-use shroud_core::ingest::can::CanFrame;
-use shroud_core::ingest::dbc::{builtin, CanDatabase};
+use shroud_drivers::assembly::MountPose;
+use shroud_drivers::can::CanFrame;
+use shroud_drivers::dbc::{builtin, CanDatabase};
 
 fn db() -> CanDatabase {
     builtin("ars408").unwrap()

@@ -6,10 +6,10 @@ use crate::can_device::{
     can_emulator, CanDeviceEmulator, CanEmulatorOptions, CanWorld, RangefinderSpec,
 };
 use crate::Bvh;
-use shroud_core::format::TriangleMesh;
-use shroud_core::ingest::assembly::MountPose;
-use shroud_core::ingest::can::CanFrame;
-use shroud_core::ingest::dbc::builtin;
+use shroud_drivers::assembly::MountPose;
+use shroud_drivers::can::CanFrame;
+use shroud_drivers::dbc::builtin;
+use shroud_shapes::format::TriangleMesh;
 use std::sync::Arc;
 
 /// A wall facing the origin: the plane x = `x`, 200 m square.

@@ -3,7 +3,7 @@
 
 use crate::can_device::{can_emulator, CanEmulatorOptions, CanWorld, CAN_MODELS};
 use proptest::prelude::*;
-use shroud_core::ingest::can::CanFrame;
+use shroud_drivers::can::CanFrame;
 
 #[test]
 fn every_listed_model_is_made_and_reports_its_name() {
@@ -65,7 +65,7 @@ fn the_emulators_encode_every_frame_without_dbc_errors() {
     use crate::can_device::benewake::{BenewakeCanEmulator, BenewakeCanModel, UnitSpec};
     use crate::can_device::CanDeviceEmulator;
     use crate::MovingSpheres;
-    use shroud_core::ingest::assembly::MountPose;
+    use shroud_drivers::assembly::MountPose;
 
     let mount = CanEmulatorOptions::default().radar_mount;
     let mut radar = Ars408Emulator::new(

@@ -8,7 +8,7 @@ mod benewake;
 mod catalog;
 
 use crate::can_device::CanDeviceEmulator;
-use shroud_core::ingest::can::CanFrame;
+use shroud_drivers::can::CanFrame;
 
 /// Everything `device` sends up to `until`, polled every 50 ms as a node
 /// would (polls at times already past return nothing new).

@@ -1,0 +1,389 @@
+//! Conservative clearance of a sphere or capsule to the occupied region of an
+//! envelope: a lower bound on the Euclidean distance from the shape to every
+//! certified cloud point in the surrogate's domain, `0` when they may meet,
+//! capped at `max_report`.
+//!
+//! The bound. For a point `p` and a sphere `(c, r)`, `dist(p, sphere) =
+//! max(0, |p - c| - r)`. Each certified point lies in the box `B` of its cell
+//! (see `envelope`), so `|p - c| >= dist(c, B)` and `dist(p, sphere) >= dist(c,
+//! B) - r`. Frame coordinates are an orthonormal change of basis, so distances
+//! computed there are world distances (up to rounding, which the margin
+//! covers). For a capsule, replace `c` by its axis segment and `dist(c, B)` by
+//! the exact segment-to-box distance. The minimum over the cells under the
+//! shape's footprint bounds every point there; cells whose rectangle is farther
+//! than `r + max_report` cannot lower a capped answer and are not visited.
+//!
+//! Refinement. A cell whose box says the shape is closer than `stop_distance`
+//! is split into 2x2 sub-rectangles, each bounded by its restricted Bézier net
+//! (tighter by the convex hull property), recursively up to `refine_depth`
+//! levels; sub-rectangles that meet no kept triangle hold no point and are
+//! dropped. The search is branch and bound: cells and sub-rectangles are visited
+//! closest first and skipped once they cannot lower the current minimum.
+//!
+//! Refinement serves one decision, whether the shape is clear of
+//! `stop_distance`. Once a fully refined piece is below it, the search stops:
+//! the answer is that piece's bound folded with the coarser bounds of the
+//! pieces not yet refined, still a lower bound on the distance, but not the
+//! tightest one available. Clearances at or above `stop_distance` are the full
+//! branch-and-bound minimum.
+//!
+//! Shortcut. When a sphere's centre (a capsule's end) lies over a kept place
+//! within `r` of the occupied height interval there, a surface point is within
+//! `r` and the answer is 0 without a search.
+// Small fixed-size matrices and nets are clearer with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
+use super::config::GuardConfig;
+use super::envelope::{rect_meets_kept, CellBox, CellPatches, Envelope};
+use super::error::GuardError;
+use super::probe::{PointProbe, Probe, SegmentProbe};
+use super::shape::Shape;
+use glam::DVec3;
+use shroud_geometry::spline::BezierPatch;
+
+/// Cells waiting for refinement, kept on the stack; beyond this many a cell is
+/// refined at once (same answer, less pruning).
+const PENDING: usize = 32;
+
+impl Envelope {
+    /// Clearance of a sphere (see the module docs), in `[0, max_report]`.
+    pub fn sphere_clearance(
+        &self,
+        centre: DVec3,
+        radius: f64,
+        config: &GuardConfig,
+    ) -> Result<f64, GuardError> {
+        self.shape_clearance(&Shape::sphere(centre, radius), config)
+    }
+
+    /// Clearance of a capsule (segment `a`-`b` swept by `radius`).
+    pub fn capsule_clearance(
+        &self,
+        a: DVec3,
+        b: DVec3,
+        radius: f64,
+        config: &GuardConfig,
+    ) -> Result<f64, GuardError> {
+        self.shape_clearance(&Shape::capsule(a, b, radius), config)
+    }
+
+    /// Clearance of any shape; refuses non-finite shapes and bad configs.
+    pub fn shape_clearance(&self, shape: &Shape, config: &GuardConfig) -> Result<f64, GuardError> {
+        config.validate()?;
+        if !shape.is_valid() {
+            return Err(GuardError::BadShape { index: 0, link: 0 });
+        }
+        Ok(self.clearance_unchecked(shape, config))
+    }
+
+    /// What every distance of `shape` to this surrogate is reduced by: the
+    /// surrogate's margin, the frame's distance from orthonormal (frame
+    /// distances below `max_report + r` scale by at most `1 +- 3
+    /// frame_error`), and the rounding of the shape's own coordinates.
+    pub(crate) fn slack(&self, shape: &Shape, config: &GuardConfig) -> f64 {
+        let r = shape.radius();
+        let skew = 4.0 * self.frame_error() * (config.max_report + r);
+        let size = match shape {
+            Shape::Sphere(s) => s.centre.abs().max_element(),
+            Shape::Capsule(c) => c.a.abs().max_element().max(c.b.abs().max_element()),
+        };
+        self.margin() + skew + 16.0 * f64::EPSILON * (size + r)
+    }
+
+    /// [`Self::shape_clearance`] for a shape and config already validated.
+    pub(crate) fn clearance_unchecked(&self, shape: &Shape, config: &GuardConfig) -> f64 {
+        let r = shape.radius();
+        let slack = self.slack(shape, config);
+        match shape {
+            Shape::Sphere(s) => {
+                let touches = || self.certainly_touches(s.centre, r);
+                let probe = PointProbe(self.to_frame(s.centre));
+                self.search(&probe, r, slack, config, touches)
+            }
+            Shape::Capsule(c) => {
+                let touches = || self.certainly_touches(c.a, r) || self.certainly_touches(c.b, r);
+                let probe = SegmentProbe {
+                    a: self.to_frame(c.a),
+                    b: self.to_frame(c.b),
+                };
+                self.search(&probe, r, slack, config, touches)
+            }
+        }
+    }
+
+    /// Branch-and-bound minimum of `dist(core, box) - radius - slack` over the
+    /// cells (and sub-rectangles) near the core, clamped to `[0, max_report]`.
+    /// Rows farther than the current minimum are skipped, and within a row only
+    /// the cells whose `u` range can still be close enough are looked at.
+    /// `touches` is the shortcut test, asked only when some cell needs refining.
+    fn search<P: Probe>(
+        &self,
+        probe: &P,
+        radius: f64,
+        slack: f64,
+        config: &GuardConfig,
+        touches: impl Fn() -> bool,
+    ) -> f64 {
+        let cap = config.max_report;
+        let offset = radius + slack;
+        let (u, v) = probe.uv_bounds();
+        let reach = cap + offset;
+        let (Some((g0, g1)), Some(_)) = (
+            self.span(1, v[0] - reach, v[1] + reach),
+            self.span(0, u[0] - reach, u[1] + reach),
+        ) else {
+            return cap;
+        };
+        let (cells_s, _) = self.cells();
+        let mut best = cap;
+        let mut pending = [(0.0f64, 0usize); PENDING];
+        let mut waiting = 0;
+        let mut touching: Option<bool> = None;
+        let refine = config.refine_depth > 0;
+        let (boxes, rows_v) = (self.boxes(), self.rows_v());
+        for g in g0..=g1 {
+            // Cells nearer than `best` lie within `limit` of the core.
+            let limit = best + offset;
+            let dv = (rows_v[g][0] - v[1]).max(v[0] - rows_v[g][1]).max(0.0);
+            if dv >= limit {
+                continue;
+            }
+            let du = (limit * limit - dv * dv).sqrt();
+            let Some((a, b)) = self.span(0, u[0] - du, u[1] + du) else {
+                continue;
+            };
+            for h in a..=b {
+                let index = g * cells_s + h;
+                let cell = &boxes[index];
+                if cell.is_empty() {
+                    continue;
+                }
+                let limit = best + offset;
+                let d2 = probe.dist2_to_box(&cell.lo, &cell.hi);
+                if d2 >= limit * limit {
+                    continue;
+                }
+                let c = d2.sqrt() - offset;
+                if c >= best {
+                    continue;
+                }
+                if refine && c < config.stop_distance {
+                    if waiting < PENDING {
+                        pending[waiting] = (c, index);
+                        waiting += 1;
+                    } else {
+                        if *touching.get_or_insert_with(&touches) {
+                            return 0.0;
+                        }
+                        best = self.refine_cell(probe, offset, index, best, config);
+                    }
+                } else {
+                    best = c;
+                }
+            }
+        }
+        if waiting > 0 && *touching.get_or_insert_with(&touches) {
+            return 0.0;
+        }
+        let pending = &mut pending[..waiting];
+        pending.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        for &(c, index) in pending.iter() {
+            if c >= best {
+                break;
+            }
+            if best < config.stop_distance {
+                // Known to be below the threshold: the coarse bound of the
+                // closest cell not yet refined keeps the answer conservative.
+                best = c;
+                break;
+            }
+            best = self.refine_cell(probe, offset, index, best, config);
+        }
+        best.clamp(0.0, cap)
+    }
+
+    /// The smaller of `best` and the refined bound of one cell.
+    fn refine_cell<P: Probe>(
+        &self,
+        probe: &P,
+        offset: f64,
+        index: usize,
+        best: f64,
+        config: &GuardConfig,
+    ) -> f64 {
+        let (cells_s, _) = self.cells();
+        let p = self.patches(index);
+        let coarse = self.boxes()[index];
+        let node = Node {
+            s: p.s,
+            t: p.t,
+            h: [coarse.lo[2], coarse.hi[2]],
+            upper: p.upper,
+            lower: p.lower,
+        };
+        let mut search = Refinement {
+            envelope: self,
+            probe,
+            offset,
+            cell: (index % cells_s, index / cells_s),
+            patches: p,
+            config,
+            best,
+        };
+        search.descend(&node, 1);
+        search.best
+    }
+}
+
+/// A sub-rectangle of a cell (local parameters) with its restricted patches.
+#[derive(Clone, Copy)]
+struct Node {
+    s: [f64; 2],
+    t: [f64; 2],
+    /// Padded height range of the points over the node.
+    h: [f64; 2],
+    upper: BezierPatch,
+    lower: BezierPatch,
+}
+
+struct Refinement<'a, P> {
+    envelope: &'a Envelope,
+    probe: &'a P,
+    offset: f64,
+    cell: (usize, usize),
+    patches: &'a CellPatches,
+    config: &'a GuardConfig,
+    best: f64,
+}
+
+impl<P: Probe> Refinement<'_, P> {
+    /// Splits `node` 2x2 (children at `level`) and folds their bounds into
+    /// `best`, recursing into children still closer than `stop_distance`.
+    fn descend(&mut self, node: &Node, level: u32) {
+        let e = self.envelope;
+        let (has_upper, has_lower) = (e.has_upper(), e.has_lower());
+        let mut children: [(f64, Option<Node>); 4] = [(f64::INFINITY, None); 4];
+        let halves = [[0.0, 0.5], [0.5, 1.0]];
+        let upper_quarters = has_upper.then(|| quarters(&node.upper));
+        let lower_quarters = has_lower.then(|| quarters(&node.lower));
+        for (k, child) in children.iter_mut().enumerate() {
+            let (hs, ht) = (halves[k % 2], halves[k / 2]);
+            let local = |x: [f64; 2], h: [f64; 2]| {
+                let mid = 0.5 * (x[0] + x[1]);
+                if h[0] == 0.0 {
+                    [x[0], mid]
+                } else {
+                    [mid, x[1]]
+                }
+            };
+            let (s, t) = (local(node.s, hs), local(node.t, ht));
+            if !rect_meets_kept(self.patches.kept, s, t) {
+                continue;
+            }
+            // The child's points lie in the parent's height range too (its net
+            // is made of convex combinations of the parent's): a cheap first
+            // bound before restricting the patches.
+            let (h, g) = self.cell;
+            let mut b: CellBox = e.sub_box_uv(h, g, s, t);
+            (b.lo[2], b.hi[2]) = (node.h[0], node.h[1]);
+            if self.probe.dist2_to_box(&b.lo, &b.hi).sqrt() - self.offset >= self.best {
+                continue;
+            }
+            let (upper, lower) = (
+                upper_quarters.map_or(node.upper, |q| q[k]),
+                lower_quarters.map_or(node.lower, |q| q[k]),
+            );
+            let heights = e.height_range(&upper, &lower, self.patches.magnitude, level);
+            // Never looser than the parent's range.
+            let heights = [heights[0].max(node.h[0]), heights[1].min(node.h[1])];
+            (b.lo[2], b.hi[2]) = (heights[0], heights[1]);
+            let c = self.probe.dist2_to_box(&b.lo, &b.hi).sqrt() - self.offset;
+            *child = (
+                c,
+                Some(Node {
+                    s,
+                    t,
+                    h: heights,
+                    upper,
+                    lower,
+                }),
+            );
+        }
+        children.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        for (c, child) in children {
+            let Some(child) = child else { break };
+            if c >= self.best {
+                break;
+            }
+            if self.best < self.config.stop_distance {
+                // Decided: fold in the bound of the closest unexplored sibling.
+                self.best = c;
+                break;
+            }
+            if level < self.config.refine_depth && c < self.config.stop_distance {
+                self.descend(&child, level + 1);
+            } else {
+                self.best = c;
+            }
+        }
+    }
+}
+
+/// The four quarters of a patch over `[0, 1/2]^2`, `[1/2, 1] x [0, 1/2]`,
+/// `[0, 1/2] x [1/2, 1]`, `[1/2, 1]^2` (index `k`: `s` half `k % 2`, `t` half
+/// `k / 2`), by de Casteljau at the midpoint: rows first, then columns. This is
+/// `BezierPatch::restrict` specialised to the 2x2 split: one subdivision of
+/// each row and column instead of two per quarter, and exact halving.
+fn quarters(p: &BezierPatch) -> [BezierPatch; 4] {
+    let halves = |c: [f64; 4]| {
+        let mid = |a: f64, b: f64| 0.5 * (a + b);
+        let (a1, b1, c1) = (mid(c[0], c[1]), mid(c[1], c[2]), mid(c[2], c[3]));
+        let (a2, b2) = (mid(a1, b1), mid(b1, c1));
+        let a3 = mid(a2, b2);
+        ([c[0], a1, a2, a3], [a3, b2, c1, c[3]])
+    };
+    // Split every row (t fixed) along s.
+    let mut rows = [[[0.0; 4]; 4]; 2];
+    for (r, row) in p.0.iter().enumerate() {
+        let (left, right) = halves(*row);
+        rows[0][r] = left;
+        rows[1][r] = right;
+    }
+    let mut out = [BezierPatch([[0.0; 4]; 4]); 4];
+    for (side, net) in rows.iter().enumerate() {
+        for q in 0..4 {
+            let (low, high) = halves([net[0][q], net[1][q], net[2][q], net[3][q]]);
+            for r in 0..4 {
+                out[side].0[r][q] = low[r];
+                out[2 + side].0[r][q] = high[r];
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quarters_agree_with_restrict() {
+        let mut net = [[0.0; 4]; 4];
+        for (i, v) in net.iter_mut().flatten().enumerate() {
+            *v = ((i * 7919) % 23) as f64 * 0.37 - 3.0;
+        }
+        let p = BezierPatch(net);
+        let q = quarters(&p);
+        for (k, quarter) in q.iter().enumerate() {
+            let (s0, t0) = (0.5 * (k % 2) as f64, 0.5 * (k / 2) as f64);
+            let r = p.restrict(s0, s0 + 0.5, t0, t0 + 0.5);
+            for (a, b) in quarter.0.iter().flatten().zip(r.0.iter().flatten()) {
+                assert!((a - b).abs() < 1e-12, "quarter {k}: {a} vs {b}");
+            }
+            for (x, y) in [(0.0, 0.0), (0.3, 0.8), (1.0, 1.0)] {
+                let direct = p.eval(s0 + 0.5 * x, t0 + 0.5 * y);
+                assert!((quarter.eval(x, y) - direct).abs() < 1e-12);
+            }
+        }
+    }
+}

@@ -1,0 +1,248 @@
+//! Distance from a shape to the directions in which a view's sensor got no
+//! return.
+//!
+//! A black object returns no range, and the surface fitted around it is
+//! interpolated from the returns of its neighbours (a floor behind it, say),
+//! so a kept triangle can vouch for space the object fills. When the cloud
+//! lists the directions that came back empty ([`NoReturn`]), every one of
+//! them is unseen from the apex outwards: the guard's bound is the distance to
+//! the nearest such cone.
+//!
+//! Each cone `K` (apex `a`, unit axis `u`, half angle `alpha < pi/2`) is
+//! convex. For a point at distance `L` from the apex, at angle `theta` from
+//! the axis, the distance to `K` is 0 when `theta <= alpha`, `L` when
+//! `theta >= alpha + pi/2` (the apex is nearest), and `L sin(theta - alpha)`
+//! between, which is `across cos(alpha) - along sin(alpha)` with `along` and
+//! `across` the point's components along and off the axis. Cones are not cut
+//! at the range (nearer bounds, never farther). The distance to a convex set
+//! is convex and 1-Lipschitz along a capsule's segment, so a golden-section
+//! search brackets its minimum, and the bracket's half width bounds the
+//! error from below.
+
+use super::shape::Shape;
+use glam::DVec3;
+use shroud_msg::NoReturn;
+
+/// Golden-section steps on a capsule's segment: the bracket shrinks to
+/// 0.618^40 (about 4e-9) of the segment.
+const SEARCH_STEPS: usize = 40;
+
+/// A [`NoReturn`] ready for distance queries: unit axes and the sine and
+/// cosine of every half angle.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct DarkCones {
+    apex: DVec3,
+    /// Axis (renormalised: the wire allows 1e-6 off unit), `sin`, `cos`.
+    cones: Vec<(DVec3, f64, f64)>,
+}
+
+impl DarkCones {
+    pub(crate) fn new(no_return: &NoReturn) -> Self {
+        Self {
+            apex: DVec3::from_array(no_return.apex),
+            cones: no_return
+                .cones
+                .iter()
+                .map(|c| {
+                    let (sin, cos) = c.half_angle.sin_cos();
+                    (DVec3::from_array(c.axis).normalize(), sin, cos)
+                })
+                .collect(),
+        }
+    }
+
+    /// Distance from `p` to cone `k`.
+    fn distance(&self, k: usize, p: DVec3) -> f64 {
+        let (axis, sin, cos) = self.cones[k];
+        let d = p - self.apex;
+        let along = d.dot(axis);
+        let across = (d.length_squared() - along * along).max(0.0).sqrt();
+        if across * cos <= along * sin {
+            0.0
+        } else if along * cos + across * sin <= 0.0 {
+            d.length()
+        } else {
+            across * cos - along * sin
+        }
+    }
+
+    /// Lower bound on the distance from segment `a`-`b` to cone `k`
+    /// (golden-section search of a convex, 1-Lipschitz function).
+    fn segment_distance(&self, k: usize, a: DVec3, b: DVec3) -> f64 {
+        let length = (b - a).length();
+        let f = |t: f64| self.distance(k, a + (b - a) * t);
+        let ratio = (5f64.sqrt() - 1.0) / 2.0;
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        let (mut x1, mut x2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+        let (mut f1, mut f2) = (f(x1), f(x2));
+        for _ in 0..SEARCH_STEPS {
+            if f1 <= f2 {
+                hi = x2;
+                (x2, f2) = (x1, f1);
+                x1 = hi - ratio * (hi - lo);
+                f1 = f(x1);
+            } else {
+                lo = x1;
+                (x1, f1) = (x2, f2);
+                x2 = lo + ratio * (hi - lo);
+                f2 = f(x2);
+            }
+        }
+        // The minimiser lies in [lo, hi]; the midpoint is within half the
+        // bracket of it, and f changes at most by the distance moved.
+        let mid = 0.5 * (lo + hi);
+        (f(mid) - 0.5 * (hi - lo) * length).min(f(0.0)).min(f(1.0))
+    }
+
+    /// Lower bound on the distance from `shape` to every cone, in `[0, cap]`.
+    pub(crate) fn clearance(&self, shape: &Shape, cap: f64) -> f64 {
+        let (a, b) = match shape {
+            Shape::Sphere(s) => (s.centre, s.centre),
+            Shape::Capsule(c) => (c.a, c.b),
+        };
+        let (mid, half) = ((a + b) * 0.5, 0.5 * (b - a).length());
+        let radius = shape.radius();
+        let mut best = cap;
+        for k in 0..self.cones.len() {
+            // Cheap first: the midpoint's distance less the half length.
+            if self.distance(k, mid) - half - radius >= best {
+                continue;
+            }
+            let d = if half == 0.0 {
+                self.distance(k, mid)
+            } else {
+                self.segment_distance(k, a, b)
+            };
+            best = best.min(d - radius);
+            if best <= 0.0 {
+                return 0.0;
+            }
+        }
+        best.clamp(0.0, cap)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::field_of_view::tests::random_unit as unit;
+    use crate::{Capsule, Sphere};
+    use rand::{Rng, SeedableRng};
+    use rand_pcg::Pcg64;
+    use shroud_msg::DarkCone;
+
+    /// The distance from `p` to one cone by brute force: the nearest of
+    /// 4000 generators (rays from the apex on the cone's surface), each an
+    /// exact point-to-ray distance, or 0 inside. Never below the truth, and
+    /// above it by at most the generators' spacing times the distance.
+    fn brute(apex: DVec3, axis: DVec3, alpha: f64, p: DVec3) -> f64 {
+        let d = p - apex;
+        if d.length() == 0.0 || d.normalize().dot(axis).acos() <= alpha {
+            return 0.0;
+        }
+        let e1 = axis.any_orthonormal_vector();
+        let e2 = axis.cross(e1);
+        (0..4000)
+            .map(|i| {
+                let phi = i as f64 / 4000.0 * std::f64::consts::TAU;
+                let g = axis * alpha.cos() + (e1 * phi.cos() + e2 * phi.sin()) * alpha.sin();
+                (d - g * d.dot(g).max(0.0)).length()
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    #[test]
+    fn distances_to_cones_match_brute_force_and_bound_capsules_from_below() {
+        let mut rng = Pcg64::seed_from_u64(11);
+        for _ in 0..120 {
+            let apex = DVec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(0.0..2.0),
+            );
+            let axis = unit(&mut rng);
+            let alpha = rng.random_range(0.001..1.4);
+            let cones = DarkCones::new(&NoReturn {
+                apex: apex.to_array(),
+                cones: vec![DarkCone {
+                    axis: axis.to_array(),
+                    half_angle: alpha,
+                }],
+            });
+            let p = apex + unit(&mut rng) * rng.random_range(0.0..3.0);
+            let exact = cones.distance(0, p);
+            let sampled = brute(apex, axis, alpha, p);
+            let spacing = std::f64::consts::TAU / 4000.0 * (p - apex).length();
+            assert!(exact <= sampled + 1e-12, "{exact} > {sampled}");
+            assert!(exact >= sampled - spacing, "{exact} << {sampled}");
+            // A sphere: the centre's distance less the radius, clamped.
+            let r = rng.random_range(0.0..0.3);
+            let sphere = Shape::Sphere(Sphere {
+                centre: p,
+                radius: r,
+            });
+            let got = cones.clearance(&sphere, 10.0);
+            assert!((got - (exact - r).clamp(0.0, 10.0)).abs() < 1e-12);
+            // A capsule: never above the distance of any point of its core
+            // (each exact, the point distance being checked just above), and
+            // within the samples' spacing of the smallest.
+            let q = p + unit(&mut rng) * rng.random_range(0.0..1.0);
+            let capsule = Shape::Capsule(Capsule {
+                a: p,
+                b: q,
+                radius: r,
+            });
+            let bound = cones.clearance(&capsule, 10.0);
+            let along = (0..=2000)
+                .map(|i| cones.distance(0, p + (q - p) * (i as f64 / 2000.0)))
+                .fold(f64::INFINITY, f64::min);
+            assert!(bound <= (along - r).max(0.0) + 1e-9, "{bound} vs {along}");
+            let slack = (q - p).length() / 2000.0 + 1e-8;
+            assert!(bound >= along - r - slack, "{bound} far below {along}");
+        }
+    }
+
+    #[test]
+    fn the_nearest_of_several_cones_and_the_cap_decide() {
+        let no_return = NoReturn {
+            apex: [0.0, 0.0, 2.0],
+            cones: vec![
+                DarkCone {
+                    axis: [0.0, 0.0, -1.0],
+                    half_angle: 0.1,
+                },
+                DarkCone {
+                    axis: [0.6, 0.0, -0.8],
+                    half_angle: 0.05,
+                },
+            ],
+        };
+        let cones = DarkCones::new(&no_return);
+        let inside = Shape::Sphere(Sphere {
+            centre: DVec3::new(0.0, 0.0, 1.0),
+            radius: 0.01,
+        });
+        assert_eq!(cones.clearance(&inside, 0.2), 0.0);
+        // 0.5 m off the vertical axis at 1 m below the apex: 0.5 cos(0.1) -
+        // 1 sin(0.1) from the first cone, farther from the second.
+        let beside = Shape::Sphere(Sphere {
+            centre: DVec3::new(-0.5, 0.0, 1.0),
+            radius: 0.0,
+        });
+        let want = 0.5 * 0.1f64.cos() - 0.1f64.sin();
+        assert!((cones.clearance(&beside, 1.0) - want).abs() < 1e-12);
+        assert_eq!(cones.clearance(&beside, 0.2), 0.2);
+        // Behind the apex the apex itself is nearest.
+        let behind = Shape::Sphere(Sphere {
+            centre: DVec3::new(0.0, 0.0, 2.5),
+            radius: 0.1,
+        });
+        assert!((cones.clearance(&behind, 1.0) - 0.4).abs() < 1e-12);
+        // No cones: nothing unseen here.
+        let none = DarkCones::new(&NoReturn {
+            apex: [0.0; 3],
+            cones: Vec::new(),
+        });
+        assert_eq!(none.clearance(&inside, 0.2), 0.2);
+    }
+}

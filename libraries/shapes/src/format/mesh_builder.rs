@@ -1,0 +1,102 @@
+//! Building a triangle mesh from the vertices and polygons a reader finds:
+//! every check and the fan triangulation, shared by the OBJ and PLY readers.
+
+use super::mesh::TriangleMesh;
+use super::FormatError;
+
+/// Collects vertices and polygons, checks them and fan-triangulates.
+#[derive(Debug, Default)]
+pub(super) struct MeshBuilder {
+    mesh: TriangleMesh,
+}
+
+impl MeshBuilder {
+    /// A builder with room for the given counts (callers bound them by the input size).
+    pub(super) fn with_capacity(vertices: usize, triangles: usize) -> Self {
+        Self {
+            mesh: TriangleMesh {
+                vertices: Vec::with_capacity(vertices),
+                triangles: Vec::with_capacity(triangles),
+            },
+        }
+    }
+
+    /// Number of vertices added so far.
+    pub(super) fn vertex_count(&self) -> usize {
+        self.mesh.vertices.len()
+    }
+
+    /// Adds a vertex; `location` names it in an error.
+    pub(super) fn vertex(
+        &mut self,
+        xyz: [f64; 3],
+        location: impl FnOnce() -> String,
+    ) -> Result<(), FormatError> {
+        if let Some(k) = xyz.iter().position(|c| !c.is_finite()) {
+            return Err(FormatError::MeshNonFiniteVertex {
+                location: location(),
+                axis: ['x', 'y', 'z'][k],
+                value: xyz[k],
+            });
+        }
+        if self.mesh.vertices.len() >= MAX_VERTICES {
+            return Err(FormatError::MeshTooManyVertices {
+                count: self.mesh.vertices.len() + 1,
+                max: MAX_VERTICES,
+            });
+        }
+        self.mesh.vertices.push(xyz);
+        Ok(())
+    }
+
+    /// Adds a polygon of vertex indices (each already checked by the caller to be
+    /// a valid index of the finished mesh) as a triangle fan around its first vertex.
+    pub(super) fn face(
+        &mut self,
+        indices: &[u32],
+        location: impl FnOnce() -> String,
+    ) -> Result<(), FormatError> {
+        let [first, rest @ ..] = indices else {
+            return Err(degenerate(location(), 0));
+        };
+        if rest.len() < 2 {
+            return Err(degenerate(location(), indices.len()));
+        }
+        self.mesh
+            .triangles
+            .extend(rest.windows(2).map(|pair| [*first, pair[0], pair[1]]));
+        Ok(())
+    }
+
+    /// The mesh, if it has vertices and at least one face whose indices are all
+    /// in range (re-checked here, whatever the format checked before).
+    pub(super) fn finish(self) -> Result<TriangleMesh, FormatError> {
+        let vertices = self.mesh.vertices.len();
+        if vertices == 0 {
+            return Err(FormatError::MeshNoVertices);
+        }
+        if self.mesh.triangles.is_empty() {
+            return Err(FormatError::MeshNoFaces { vertices });
+        }
+        let bad = self.mesh.triangles.iter().enumerate().find_map(|(t, tri)| {
+            tri.iter()
+                .find(|&&i| i as usize >= vertices)
+                .map(|&i| (t, i))
+        });
+        if let Some((triangle, index)) = bad {
+            return Err(FormatError::MeshIndexOutOfRange {
+                location: format!("triangle {triangle}"),
+                index: i64::from(index),
+                vertices,
+            });
+        }
+        Ok(self.mesh)
+    }
+}
+
+/// Vertex count limit: every index must fit in the `u32` of [`TriangleMesh`].
+const MAX_VERTICES: usize = u32::MAX as usize;
+
+fn degenerate(location: String, count: usize) -> FormatError {
+    FormatError::MeshDegenerateFace { location, count }
+}
