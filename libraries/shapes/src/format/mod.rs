@@ -28,6 +28,7 @@ pub use mesh::TriangleMesh;
 pub use mesh_read::parse_triangle_mesh;
 pub use pcd::{has_pcd_header, parse_pcd, write_pcd, PcdEncoding};
 pub use ply::{has_ply_magic, parse_ply, write_ply_points, PlyCloud};
+pub(crate) use ply::{write_ply_vertices, PlyProperty, PlyVertices};
 pub use shroud_surrogate::{validate_surrogate, SurrogateDefect};
 pub use surrogate_binary::{
     surrogate_from_binary, surrogate_to_binary, SURROGATE_BINARY_VERSION, SURROGATE_MAGIC,

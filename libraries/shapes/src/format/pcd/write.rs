@@ -5,7 +5,7 @@
 
 use super::lzf;
 use super::PcdEncoding;
-use crate::format::point_rows::{per_point, push_records};
+use crate::format::point_rows::{per_point, push_records, Column};
 use crate::format::FormatError;
 
 /// A PCD file of `points` and, when `intensity` holds exactly one value per
@@ -20,9 +20,10 @@ pub fn write_pcd(
 ) -> Result<Vec<u8>, FormatError> {
     let intensity = per_point(points, intensity);
     let mut out = header(points.len(), intensity.is_some(), encoding).into_bytes();
+    let columns = intensity.map(Column::F32);
     match encoding {
-        PcdEncoding::Ascii => push_records(&mut out, points, intensity, true),
-        PcdEncoding::Binary => push_records(&mut out, points, intensity, false),
+        PcdEncoding::Ascii => push_records(&mut out, points, columns.as_slice(), true),
+        PcdEncoding::Binary => push_records(&mut out, points, columns.as_slice(), false),
         PcdEncoding::BinaryCompressed => push_compressed(&mut out, points, intensity)?,
     }
     Ok(out)

@@ -2,6 +2,8 @@
 //! `vertex` element's x, y, z of any scalar type and an optional intensity; every
 //! other property and element is skipped. Triangle meshes (vertices plus the
 //! `face` element) are read by [`parse_ply_mesh`] with the same record readers.
+//! Point clouds, with any further per-vertex properties, are written by
+//! [`write_ply_vertices`].
 
 mod ascii_body;
 mod binary_body;
@@ -17,6 +19,7 @@ mod write;
 pub use header::has_ply_magic;
 pub(in crate::format) use mesh::parse_ply_mesh;
 pub use write::write_ply_points;
+pub(crate) use write::{write_ply_vertices, PlyProperty, PlyVertices};
 
 use crate::format::FormatError;
 use header::{parse_header, Encoding};
