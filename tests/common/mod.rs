@@ -163,6 +163,11 @@ pub fn free_port() -> u16 {
 /// A zenoh peer session for the test without multicast scouting, with these
 /// further settings (JSON5 values by key).
 pub fn peer_session(settings: &[(&str, String)]) -> zenoh::Session {
+    open_peer(settings).expect("test session opens")
+}
+
+/// [`peer_session`], or why it could not open.
+fn open_peer(settings: &[(&str, String)]) -> zenoh::Result<zenoh::Session> {
     let mut config = zenoh::Config::default();
     let base = [
         ("mode", "\"peer\"".to_string()),
@@ -171,7 +176,7 @@ pub fn peer_session(settings: &[(&str, String)]) -> zenoh::Session {
     for (k, v) in base.iter().chain(settings) {
         config.insert_json5(k, v).expect("valid zenoh setting");
     }
-    zenoh::open(config).wait().expect("test session opens")
+    zenoh::open(config).wait()
 }
 
 /// A zenoh peer session for the test, listening on `endpoint`, without scouting.
@@ -181,9 +186,17 @@ pub fn hub(endpoint: &str) -> zenoh::Session {
 
 /// A hub on a free loopback port, and that port's endpoint.
 pub fn hub_on_free_port() -> (String, zenoh::Session) {
-    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
-    let session = hub(&endpoint);
-    (endpoint, session)
+    // The port was free when asked, but another test binary running at the
+    // same time may bind it first: then ask for another.
+    let mut refused = Vec::new();
+    for _ in 0..5 {
+        let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+        match open_peer(&[("listen/endpoints", format!("[\"{endpoint}\"]"))]) {
+            Ok(session) => return (endpoint, session),
+            Err(e) => refused.push(format!("{endpoint}: {e}")),
+        }
+    }
+    panic!("no loopback port for the test hub: {refused:?}")
 }
 
 /// A zenoh peer session for the test that connects to `endpoint`.
