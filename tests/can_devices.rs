@@ -474,7 +474,7 @@ fn can_an_ars408_on_a_vcan_interface_when_the_kernel_has_one() {
 /// decide anything here.
 #[test]
 fn can_the_bench_replays_the_recorded_traffic_exactly() {
-    let mut bench = Proc::start(&["bench", "can", "--quick"]);
+    let mut bench = Proc::spawn(common::bench::shroud_bench().args(["can", "--quick"]));
     assert!(bench.wait_exit(LONG).success(), "{}", bench.output());
     let output = bench.output();
     for needle in [

@@ -361,7 +361,11 @@ fn corrupted_surrogates_are_rejected() {
 
 #[test]
 fn bench_quick_prints_the_paper_tables() {
-    let stdout = ok(shroud(&["bench", "surrogate", "--quick"]));
+    let bench = common::bench::shroud_bench()
+        .args(["surrogate", "--quick"])
+        .output()
+        .expect("the shroud-bench binary runs");
+    let stdout = ok(bench);
     for heading in ["Table 1", "Table 2", "Figure 9", "Section 3"] {
         assert!(
             stdout.contains(heading),
@@ -369,6 +373,15 @@ fn bench_quick_prints_the_paper_tables() {
         );
     }
     assert!(stdout.contains("| 10K | 14.5 |"), "{stdout}");
+}
+
+/// The benchmarks are their own binary, `shroud-bench`; the shipped one has none.
+#[test]
+fn the_shipped_binary_has_no_bench_subcommand() {
+    fails_with(
+        shroud(&["bench", "surrogate", "--quick"]),
+        "unrecognized subcommand 'bench'",
+    );
 }
 
 #[test]

@@ -1,16 +1,16 @@
-//! The soak's 30-second version (`shroud bench soak --check`): the demo graph
+//! The soak's 30-second version (`shroud-bench soak --check`): the demo graph
 //! at 300K points and 30 Hz; every cloud the scanner published is accounted
 //! for at the fit node (taken, dropped by its backlog policy, or missing from
 //! its sequence), and no node's memory grows between the first and the last
 //! ten seconds beyond a small bound. The table it prints is in the test log.
 
-use std::process::Command;
+mod common;
 
 #[test]
 fn a_thirty_second_soak_accounts_for_every_cloud_and_memory_stays_flat() {
-    let out = Command::new(env!("CARGO_BIN_EXE_shroud"))
+    let out = common::bench::shroud_bench()
         .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(["bench", "soak", "--points", "300000", "--rate", "30"])
+        .args(["soak", "--points", "300000", "--rate", "30"])
         .args([
             "--minutes",
             "0.5",
@@ -21,7 +21,7 @@ fn a_thirty_second_soak_accounts_for_every_cloud_and_memory_stays_flat() {
             "16",
         ])
         .output()
-        .expect("the shroud binary runs");
+        .expect("the shroud-bench binary runs");
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
     eprintln!("{stdout}");

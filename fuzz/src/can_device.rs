@@ -1,5 +1,5 @@
 //! CAN device drivers (`CanDeviceDriver`) under fuzz input, and seeds
-//! recorded from sim's CAN device emulators.
+//! recorded from the CAN device emulators (`shroud_emulators`).
 //!
 //! An input is a byte choosing the driver's configuration, then the frames
 //! on the bus as [`crate::can_records`]: the clock advances each record's
@@ -8,7 +8,7 @@
 use crate::can_records::{record as frame_record, records};
 use shroud_drivers::can_device::{CanDeviceDriver, CanDriverOutput, FrameClock, TimedFrame};
 use shroud_drivers::device::HostTime;
-use shroud_sim::can_device::{can_emulator, CanEmulatorOptions, CanWorld};
+use shroud_emulators::can_device::{can_emulator, CanEmulatorOptions, CanWorld};
 
 const ORIGIN: HostTime = HostTime::new(1_000_000_000, 1_700_000_000_000_000_000);
 /// The most points one cycle's cloud may hold (an ARS408 cluster list has at
@@ -57,11 +57,11 @@ fn check(output: &CanDriverOutput, now: HostTime) {
     }
 }
 
-/// The bus side of `seconds` of a session between driver `choice` and sim's
+/// The bus side of `seconds` of a session between driver `choice` and the
 /// emulator of `model`, as an input of [`run`].
 pub fn record(model: &str, make: MakeDriver, choice: u8, seconds: f64) -> Vec<u8> {
     let mut device = can_emulator(model, &CanEmulatorOptions::default(), CanWorld::default())
-        .expect("a model sim emulates");
+        .expect("an emulated model");
     let mut driver = make(choice);
     let (mut now, mut out, mut input) = (ORIGIN, Vec::new(), vec![choice]);
     driver.connect(now, true, &mut out);

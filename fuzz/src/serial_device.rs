@@ -1,5 +1,5 @@
 //! Serial device drivers (`DeviceDriver`) under fuzz input, and seeds
-//! recorded from sim's device emulators.
+//! recorded from the serial device emulators (`shroud_emulators`).
 //!
 //! An input is a byte choosing the driver's configuration, then what the
 //! device sends, as records `[step_ms, len, len bytes]`:
@@ -9,7 +9,7 @@
 //! recorded device side replays the recorded session.
 
 use shroud_drivers::device::{DeviceDriver, DriverOutput, HostTime, ReadWindow, StampBound};
-use shroud_sim::device::{emulator, EmulatorOptions, RayReturn, RaySource};
+use shroud_emulators::device::{emulator, EmulatorOptions, RayReturn, RaySource};
 
 /// Where the clock starts (monotonic and Unix).
 const ORIGIN: HostTime = HostTime::new(1_000_000_000, 1_700_000_000_000_000_000);
@@ -100,10 +100,10 @@ impl RaySource for Room {
 }
 
 /// The device side of `seconds` of a session between driver `choice` and
-/// sim's emulator of `model`, as an input of [`run`].
+/// the emulator of `model`, as an input of [`run`].
 pub fn record(model: &str, make: MakeDriver, choice: u8, seconds: f64) -> Vec<u8> {
     let mut device =
-        emulator(model, Box::new(Room), &EmulatorOptions::default()).expect("a model sim emulates");
+        emulator(model, Box::new(Room), &EmulatorOptions::default()).expect("an emulated model");
     let mut driver = make(choice);
     let (mut now, mut out, mut input) = (ORIGIN, Vec::new(), vec![choice]);
     driver.connect(now, &mut out);

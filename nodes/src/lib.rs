@@ -4,7 +4,6 @@
 
 pub mod args;
 mod arm_file;
-pub mod bench;
 pub mod cli;
 pub mod exit;
 pub mod files;
@@ -15,5 +14,6 @@ pub mod node;
 pub mod parse;
 pub mod recording;
 pub mod runtime;
+pub mod timing;
 pub mod to_foxglove;
 pub mod transport;

@@ -13,8 +13,6 @@
 //! of moving solids, scanned, fitted and judged by shroud, every verdict
 //! compared with exact geometry of its own.
 
-pub mod can_device;
-pub mod device;
 mod error;
 mod mesh_scene;
 mod moving_spheres;
@@ -24,7 +22,6 @@ mod sampling;
 pub mod scanned_parts;
 mod scanner;
 mod scene;
-mod slcan_adapter;
 pub mod soundness;
 mod table_objects;
 mod table_top;
@@ -40,7 +37,6 @@ pub use scanner::{
     TableTopScan, TerrainScan,
 };
 pub use scene::Scene;
-pub use slcan_adapter::SlcanAdapter;
 pub use table_objects::{TableBox, TableCylinder};
 pub use table_top::TableTop;
 pub use terrain::{Cliff, Hill, Terrain};

@@ -1,7 +1,7 @@
 //! The guard's promise, checked by brute force: random scenes of moving
 //! solids, scanned by random sensors, fitted and judged by shroud's real
 //! fitter and guard, every verdict compared with exact geometry
-//! (`shroud_sim::soundness`; the full run is `shroud bench guard-soundness`).
+//! (`shroud_sim::soundness`; the full run is `shroud-bench guard-soundness`).
 //!
 //! - Within the guard's documented assumptions (sensors that see every
 //!   column over their footprint, i.e. parallel rays, and no black solids) a

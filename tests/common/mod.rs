@@ -3,6 +3,7 @@
 //! liveness checks.
 #![allow(dead_code)]
 
+pub mod bench;
 pub mod browser;
 pub mod device_rig;
 pub mod launched;
@@ -26,13 +27,18 @@ pub struct Proc {
 
 impl Proc {
     pub fn start(args: &[&str]) -> Proc {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_shroud"))
-            .args(args)
+        Proc::spawn(Command::new(env!("CARGO_BIN_EXE_shroud")).args(args))
+    }
+
+    /// Starts `command` (another program than `shroud`, or with its own
+    /// settings) and collects its output as [`Proc::start`] does.
+    pub fn spawn(command: &mut Command) -> Proc {
+        let mut child = command
             .stdin(Stdio::null())
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
             .spawn()
-            .expect("the shroud binary starts");
+            .unwrap_or_else(|e| panic!("{command:?} does not start: {e}"));
         let (tx, lines) = channel::<String>();
         let seen = Arc::new(Mutex::new(Vec::new()));
         for stream in [

@@ -8,7 +8,7 @@ use shroud_drivers::benewake_can::{
 };
 use shroud_drivers::can_device::CanDeviceDriver;
 
-/// The CAN models: sim's name, shroud's name.
+/// The CAN models: the emulator's name, shroud's name.
 const MODELS: [(&str, &str); 4] = [
     ("tf03-can", "tf03"),
     ("tfmini-i-can", "tfmini-i"),

@@ -42,7 +42,7 @@ fn decode<'a>(
     (events, stats)
 }
 
-/// Streams recorded from sim's RPLIDAR emulators: the bytes after the last
+/// Streams recorded from the RPLIDAR emulators: the bytes after the last
 /// scan descriptor (`A5 5A .. .. .. 40 type`) of a session.
 pub fn seeds() -> Vec<Vec<u8>> {
     let sessions = [

@@ -1,5 +1,5 @@
 //! Criterion benchmarks of the fitting hot paths (`cargo bench -p shroud-surrogate --bench fit`).
-//! The paper's tables are reproduced by `shroud bench surrogate`; these isolate
+//! The paper's tables are reproduced by `shroud-bench surrogate`; these isolate
 //! the pieces: the whole surface fit, the Section 5 curve heuristic and the
 //! Section 4 broken-line heuristic.
 

@@ -9,14 +9,15 @@ use crate::ingest::EmulatorLine;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use shroud_drivers::assembly::MountPose;
-use shroud_shapes::format::parse_triangle_mesh;
-use shroud_sim::can_device::{
+use shroud_emulators::can_device::{
     can_emulator, CanDeviceEmulator, CanEmulatorOptions, CanWorld, RangefinderSpec, CAN_MODELS,
 };
-use shroud_sim::device::hokuyo::HokuyoModel;
-use shroud_sim::device::{EmulatorOptions, Faults, MeshRays, SerialDeviceEmulator, MODELS};
+use shroud_emulators::device::hokuyo::HokuyoModel;
+use shroud_emulators::device::{EmulatorOptions, Faults, MeshRays, SerialDeviceEmulator, MODELS};
+use shroud_emulators::SlcanAdapter;
+use shroud_shapes::format::parse_triangle_mesh;
+use shroud_sim::MovingSpheres;
 use shroud_sim::{Bvh, TableTop, Terrain, DEFAULT_CYLINDER_SEGMENTS, DEFAULT_TERRAIN_CELLS};
-use shroud_sim::{MovingSpheres, SlcanAdapter};
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -180,7 +181,7 @@ impl EmulatorArgs {
                 seed: options.seed.wrapping_add(power_ups),
                 ..options.clone()
             };
-            shroud_sim::device::emulator(&model, Box::new(rays), &options)
+            shroud_emulators::device::emulator(&model, Box::new(rays), &options)
                 .map_err(anyhow::Error::msg)
         }))
     }

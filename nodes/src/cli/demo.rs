@@ -1,7 +1,7 @@
 //! `shroud demo`: the simulator's moving spheres streamed into a warm-started
 //! sandwich fitter, with a live one-line summary per second.
 
-use crate::bench::median;
+use crate::timing::median;
 use anyhow::Result;
 use clap::Args;
 use shroud_sim::MovingSpheres;

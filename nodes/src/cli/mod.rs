@@ -40,8 +40,6 @@ pub enum Command {
     Sim(sim::SimArgs),
     /// Query a surrogate: classify a point, cast a ray, bound a region.
     Query(query::QueryArgs),
-    /// Reproduce the paper's timing tables and measure ours.
-    Bench(crate::bench::BenchArgs),
     /// Run one node of the graph in this process (scanner, fit, guard, arm, ...),
     /// or list the running nodes.
     #[command(subcommand)]
@@ -75,7 +73,6 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Fit(args) => fit::run(args),
         Command::Sim(args) => sim::run(args),
         Command::Query(args) => query::run(args),
-        Command::Bench(args) => crate::bench::run(args),
         Command::Node(command) => crate::node::run(command),
         Command::Topic(command) => crate::introspect::run(command),
         Command::Launch(args) => crate::launch::run(args),

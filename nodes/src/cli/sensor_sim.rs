@@ -15,7 +15,7 @@ use shroud_drivers::can::{
 };
 use shroud_drivers::serial::{PointEncoding, SerialEncoder, MAX_FRAME_POINTS};
 use shroud_drivers::Scan;
-use shroud_sim::can_device::CAN_MODELS;
+use shroud_emulators::can_device::CAN_MODELS;
 use shroud_sim::Scene;
 use std::io::Write;
 use std::path::{Path, PathBuf};

@@ -6,7 +6,7 @@
 use super::pty::Pty;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
-use shroud_sim::device::SerialDeviceEmulator;
+use shroud_emulators::device::SerialDeviceEmulator;
 use std::io::{self, Read, Write};
 use std::os::fd::AsRawFd;
 use std::path::{Path, PathBuf};

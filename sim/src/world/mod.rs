@@ -1,6 +1,6 @@
 //! The world an emulated sensor measures, shared by the serial and the CAN
-//! emulators: a ray's first return ([`RaySource`]), and the rays of a
-//! (moving) mount into a triangle mesh ([`MeshRays`]).
+//! emulators (`shroud_emulators`): a ray's first return ([`RaySource`]), and
+//! the rays of a (moving) mount into a triangle mesh ([`MeshRays`]).
 
 mod mesh_rays;
 mod ray;

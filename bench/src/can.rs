@@ -1,4 +1,4 @@
-//! `shroud bench can`: how fast the CAN device layer decodes. First the
+//! `shroud-bench can`: how fast the CAN device layer decodes. First the
 //! generic DBC codec against a decoder of the ARS408's 0x701
 //! Cluster_1_General shifted by hand; then whole drivers (an ARS408 sending
 //! clusters with quality, three TF03-CAN on one bus) on recorded emulator
@@ -15,7 +15,6 @@
 
 use super::encode::encode_timed;
 use super::{median, timed, BenchArgs};
-use crate::transport::PayloadWriter;
 use anyhow::{anyhow, bail, ensure, Context, Result};
 use shroud_drivers::ars408::{Ars408Config, Ars408Driver, RadarSettings};
 use shroud_drivers::assembly::MountPose;
@@ -28,12 +27,13 @@ use shroud_drivers::can_device::{
 };
 use shroud_drivers::dbc::{builtin, CanDatabase};
 use shroud_drivers::device::{DeviceState, HostTime};
-use shroud_graph::metrics::{LatencySummary, Percentiles};
-use shroud_sim::can_device::ars408::CYCLE_PERIOD_S;
-use shroud_sim::can_device::benewake::BenewakeCanModel as EmulatedBenewake;
-use shroud_sim::can_device::{
+use shroud_emulators::can_device::ars408::CYCLE_PERIOD_S;
+use shroud_emulators::can_device::benewake::BenewakeCanModel as EmulatedBenewake;
+use shroud_emulators::can_device::{
     can_emulator, CanDeviceEmulator, CanEmulatorOptions, CanWorld, RangefinderSpec,
 };
+use shroud_graph::metrics::{LatencySummary, Percentiles};
+use shroud_nodes::transport::PayloadWriter;
 use shroud_sim::{Bvh, MovingSpheres, TableTop, DEFAULT_CYLINDER_SEGMENTS};
 use std::f64::consts::FRAC_PI_2;
 use std::hint::black_box;
@@ -68,7 +68,7 @@ const SAME_VALUE: f64 = 1e-9;
 /// One CAN device (or bus of devices) under test.
 struct CanDevice {
     label: &'static str,
-    /// The emulator's model name (`shroud_sim::can_device::CAN_MODELS`).
+    /// The emulator's model name (`shroud_emulators::can_device::CAN_MODELS`).
     model: &'static str,
     options: fn() -> CanEmulatorOptions,
     driver: fn() -> Result<Box<dyn CanDeviceDriver>>,

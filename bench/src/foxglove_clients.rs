@@ -1,4 +1,4 @@
-//! Foxglove WebSocket clients for `shroud bench consumers`: each offers the
+//! Foxglove WebSocket clients for `shroud-bench consumers`: each offers the
 //! `foxglove.sdk.v1` subprotocol, subscribes to every channel the bridge
 //! advertises (now and later) and takes every binary frame, as a Foxglove
 //! app on another machine would (it draws nothing here).

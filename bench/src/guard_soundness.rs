@@ -1,4 +1,4 @@
-//! `shroud bench guard-soundness`: the brute-force soundness run of the
+//! `shroud-bench guard-soundness`: the brute-force soundness run of the
 //! collision guard (`shroud_sim::soundness`) over `--cases` random scenes,
 //! printed as a markdown table with the optimistic findings, if any, one
 //! simplest example per class. Fails (non-zero exit) when a `clear` verdict

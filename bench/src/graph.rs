@@ -1,12 +1,14 @@
 //! A graph of real node processes on a private zenoh hub, for benchmarks that
-//! measure the graph itself (consumers, soak): start and stop nodes by name,
+//! measure the graph itself (latency, consumers, soak): start and stop nodes by
+//! name (each a `shroud node` process of the `shroud` binary beside this one),
 //! read their CPU time and memory from `/proc`, and hear their messages.
 
-use crate::transport::{die_with_parent, OnOff, ZenohArgs};
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use shroud_msg::{NodeStatusMessage, SurrogateMessage, TopicKind};
+use shroud_nodes::transport::{die_with_parent, OnOff, ZenohArgs};
 use shroud_surrogate::SurrogateWire;
 use std::collections::BTreeMap;
+use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
 
 /// The graph: a hub session and the node processes started on it.
@@ -14,12 +16,31 @@ pub struct BenchGraph {
     pub session: zenoh::Session,
     pub namespace: String,
     endpoint: String,
+    /// The `shroud` binary the nodes run.
+    shroud: PathBuf,
     nodes: BTreeMap<String, Child>,
+}
+
+/// The `shroud` binary in this executable's directory: `cargo build` puts
+/// both binaries of one profile in the same target directory.
+fn shroud_beside_this_binary() -> Result<PathBuf> {
+    let this = std::env::current_exe().context("cannot find the shroud-bench executable")?;
+    let shroud = this.with_file_name(format!("shroud{}", std::env::consts::EXE_SUFFIX));
+    if !shroud.is_file() {
+        bail!(
+            "this benchmark runs its nodes with the shroud binary, and there is none at {}: \
+             build it first with `cargo build --release -p shroud` (the same profile as \
+             shroud-bench; without --release for a debug shroud-bench)",
+            shroud.display()
+        );
+    }
+    Ok(shroud)
 }
 
 impl BenchGraph {
     /// A hub on a free loopback port, in namespace `bench-<pid>-<tag>`.
     pub async fn start(tag: &str) -> Result<Self> {
+        let shroud = shroud_beside_this_binary()?;
         let namespace = format!("bench-{}-{tag}", std::process::id());
         let hub = ZenohArgs {
             namespace: namespace.clone(),
@@ -42,6 +63,7 @@ impl BenchGraph {
             session,
             namespace,
             endpoint,
+            shroud,
             nodes: BTreeMap::new(),
         })
     }
@@ -55,8 +77,7 @@ impl BenchGraph {
         args: &[&str],
         log: Option<&std::path::Path>,
     ) -> Result<u32> {
-        let exe = std::env::current_exe().context("cannot find the shroud executable")?;
-        let mut cmd = Command::new(exe);
+        let mut cmd = Command::new(&self.shroud);
         cmd.args(["--log", "warn", "node", kind, "--name", name])
             .args(["--namespace", &self.namespace, "--connect", &self.endpoint])
             .args(["--multicast", "off"])

@@ -5,11 +5,11 @@ use crate::can_device::ars408::frames::cluster_cycle;
 use crate::can_device::ars408::scene::Detection;
 use crate::can_device::ars408::{OutputType, RadarConfig, CYCLE_PERIOD_S, STATIC_CLUSTERS};
 use crate::can_device::{can_emulator, CanDeviceEmulator, CanEmulatorOptions, CanWorld};
-use crate::MovingSpheres;
 use glam::DVec3;
 use shroud_drivers::assembly::MountPose;
 use shroud_drivers::can::CanFrame;
 use shroud_drivers::dbc::{builtin, CanDatabase};
+use shroud_sim::MovingSpheres;
 
 fn db() -> CanDatabase {
     builtin("ars408").unwrap()

@@ -64,8 +64,8 @@ fn the_emulators_encode_every_frame_without_dbc_errors() {
     use crate::can_device::ars408::{Ars408Emulator, RadarConfig};
     use crate::can_device::benewake::{BenewakeCanEmulator, BenewakeCanModel, UnitSpec};
     use crate::can_device::CanDeviceEmulator;
-    use crate::MovingSpheres;
     use shroud_drivers::assembly::MountPose;
+    use shroud_sim::MovingSpheres;
 
     let mount = CanEmulatorOptions::default().radar_mount;
     let mut radar = Ars408Emulator::new(

@@ -7,9 +7,9 @@
 //! model's minimum reliable strength.
 
 use super::model::CanModelSpec;
-use crate::world::RaySource;
 use rand::Rng;
 use rand_pcg::Pcg64;
+use shroud_sim::world::RaySource;
 
 /// Standard deviation of the range noise: 1 cm up to 2 m, 0.5 % beyond.
 const NOISE_FRACTION: f64 = 0.005;

@@ -17,13 +17,13 @@ use super::settings::CanSettings;
 use crate::can_device::bus::Transmitter;
 use crate::can_device::signals::encode;
 use crate::can_device::CanDeviceEmulator;
-use crate::world::{MeshRays, RaySource};
-use crate::Bvh;
 use rand::SeedableRng;
 use rand_pcg::Pcg64;
 use shroud_drivers::assembly::{MountPose, MovingMount};
 use shroud_drivers::can::CanFrame;
 use shroud_drivers::dbc::{builtin, CanDatabase};
+use shroud_sim::world::{MeshRays, RaySource};
+use shroud_sim::Bvh;
 use std::sync::Arc;
 
 /// Units one emulator drives at most.

@@ -2,10 +2,10 @@
 //! sensor nodes encode it (`Scan::to_view`, `PayloadWriter::encode`, copy
 //! path), from the call that finished it.
 
-use crate::transport::PayloadWriter;
 use anyhow::Result;
 use shroud_drivers::Scan;
 use shroud_msg::SensorPose;
+use shroud_nodes::transport::PayloadWriter;
 use std::hint::black_box;
 use std::time::Instant;
 

@@ -1,13 +1,13 @@
-//! `shroud bench latency`: end-to-end latency of the fit node, from a cloud
+//! `shroud-bench latency`: end-to-end latency of the fit node, from a cloud
 //! published to its surrogate received, through a real `shroud node fit` process
 //! and real zenoh sessions, at several cloud sizes and rates.
 
 use super::graph::BenchGraph;
 use super::BenchArgs;
-use crate::transport::{topic_publisher, unix_ns, PayloadWriter};
 use anyhow::Result;
 use shroud_graph::metrics::Percentiles;
 use shroud_msg::{CloudView, TopicKind};
+use shroud_nodes::transport::{topic_publisher, unix_ns, PayloadWriter};
 use shroud_sim::MovingSpheres;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};

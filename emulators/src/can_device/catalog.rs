@@ -4,8 +4,8 @@
 use super::ars408::{Ars408Emulator, RadarConfig};
 use super::benewake::{BenewakeCanEmulator, BenewakeCanModel, UnitSpec};
 use super::emulator::CanDeviceEmulator;
-use crate::{Bvh, MovingSpheres};
 use shroud_drivers::assembly::MountPose;
+use shroud_sim::{Bvh, MovingSpheres};
 use std::sync::Arc;
 
 /// The models [`can_emulator`] makes.

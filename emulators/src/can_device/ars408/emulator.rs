@@ -14,12 +14,12 @@ use super::frames::{cluster_cycle, object_cycle, radar_state, version, Object};
 use super::scene::{clusters, targets, Detection};
 use crate::can_device::bus::Transmitter;
 use crate::can_device::CanDeviceEmulator;
-use crate::MovingSpheres;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use shroud_drivers::assembly::MountPose;
 use shroud_drivers::can::CanFrame;
 use shroud_drivers::dbc::{builtin, CanDatabase, DbcError};
+use shroud_sim::MovingSpheres;
 
 /// The radar's bus: 500 kbit/s.
 pub const BITRATE: u32 = 500_000;

@@ -5,11 +5,11 @@ use crate::can_device::benewake::{range_noise_m, BenewakeCanModel};
 use crate::can_device::{
     can_emulator, CanDeviceEmulator, CanEmulatorOptions, CanWorld, RangefinderSpec,
 };
-use crate::Bvh;
 use shroud_drivers::assembly::MountPose;
 use shroud_drivers::can::CanFrame;
 use shroud_drivers::dbc::builtin;
 use shroud_shapes::format::TriangleMesh;
+use shroud_sim::Bvh;
 use std::sync::Arc;
 
 /// A wall facing the origin: the plane x = `x`, 200 m square.

@@ -1,4 +1,4 @@
-//! `shroud bench consumers`: what watching the graph costs it. A scanner and a
+//! `shroud-bench consumers`: what watching the graph costs it. A scanner and a
 //! fit node run at `--points`/`--rate`; the fit latency (each surrogate's
 //! `pipeline_ns`: the scanner's share, the fit node's wait, decode and fit) is
 //! measured with no consumer, then with the dashboard node and 0, 1, 3 real

@@ -1,5 +1,8 @@
-//! `shroud bench`: reproduces the timing tables of paper 000 on the paper's own
-//! scene and prints them beside the paper's numbers (markdown, for docs/benchmarks.md).
+//! `shroud-bench`, the benchmark harness (its own binary, not shipped with
+//! `shroud`): reproduces the timing tables of paper 000 on the paper's own
+//! scene beside the paper's numbers, and measures the graph, the drivers and
+//! the guard (markdown, for docs/benchmarks.md). The graph suites (latency,
+//! consumers, soak) run their nodes with the `shroud` binary built next to it.
 
 mod can;
 mod consumers;
@@ -11,12 +14,11 @@ mod guard_soundness;
 mod latency;
 mod paper000;
 mod soak;
-mod timing;
-
-pub use timing::{median, timed};
 
 use anyhow::Result;
-use clap::{Args, ValueEnum};
+use clap::{Parser, ValueEnum};
+use shroud_nodes::timing::{median, timed};
+use std::process::ExitCode;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Suite {
@@ -44,7 +46,11 @@ pub enum Suite {
     GuardSoundness,
 }
 
-#[derive(Debug, Args)]
+#[derive(Debug, Parser)]
+#[command(
+    version,
+    about = "Reproduce the paper's timing tables and measure ours"
+)]
 pub struct BenchArgs {
     #[arg(value_enum, default_value = "surrogate")]
     pub suite: Suite,
@@ -117,7 +123,7 @@ pub struct BenchArgs {
     pub no_empty_rays: bool,
 }
 
-pub fn run(args: BenchArgs) -> Result<()> {
+fn run(args: BenchArgs) -> Result<()> {
     match args.suite {
         Suite::Surrogate => paper000::run(&args),
         Suite::Latency => latency::run(&args),
@@ -127,4 +133,22 @@ pub fn run(args: BenchArgs) -> Result<()> {
         Suite::Soak => soak::run(&args),
         Suite::GuardSoundness => guard_soundness::run_bench(&args),
     }
+}
+
+/// An error is printed with its causes on one line, and exits 1.
+fn main() -> ExitCode {
+    let args = BenchArgs::parse();
+    // Warnings of the libraries (zenoh's included) on standard error, unless
+    // RUST_LOG asks for more; the tables go to standard output.
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env()
+        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("warn"));
+    tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr)
+        .init();
+    let failed = |error: anyhow::Error| {
+        eprintln!("error: {error:#}");
+        ExitCode::FAILURE
+    };
+    run(args).map_or_else(failed, |()| ExitCode::SUCCESS)
 }

@@ -5,7 +5,7 @@ use super::benewake::{BenewakeEmulator, BenewakeModel, BenewakeOptions};
 use super::emulator::{Faults, SerialDeviceEmulator};
 use super::hokuyo::{HokuyoEmulator, HokuyoModel, HokuyoOptions, Link};
 use super::rplidar::{RplidarEmulator, RplidarModel, RplidarOptions};
-use crate::world::RaySource;
+use shroud_sim::world::RaySource;
 
 /// The models [`emulator`] makes.
 pub const MODELS: [&str; 9] = [

@@ -1,4 +1,4 @@
-//! `shroud bench soak`: the demo graph (scanner, fit, guard, arm, dashboard)
+//! `shroud-bench soak`: the demo graph (scanner, fit, guard, arm, dashboard)
 //! at `--points`/`--rate` for `--minutes`, reported per window: every node's
 //! resident memory and CPU share, the fit latency (p50, p99 of the surrogates'
 //! `pipeline_ns`), drops by cause, and shared-memory use; then each node's

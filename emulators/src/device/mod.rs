@@ -15,6 +15,6 @@ mod emulator;
 pub mod hokuyo;
 pub mod rplidar;
 
-pub use crate::world::{MeshRays, RayReturn, RaySource};
 pub use catalog::{emulator, EmulatorOptions, MODELS};
 pub use emulator::{Faults, SerialDeviceEmulator};
+pub use shroud_sim::world::{MeshRays, RayReturn, RaySource};

@@ -5,9 +5,9 @@
 //!
 //! Geometry only, no noise; the emulator adds the measurement noise.
 
-use crate::MovingSpheres;
 use glam::DVec3;
 use shroud_drivers::assembly::MountPose;
+use shroud_sim::MovingSpheres;
 
 /// Half the azimuth field of view: the ARS408-21's near scan covers ±60°.
 pub const HALF_AZIMUTH_DEG: f64 = 60.0;

@@ -124,7 +124,7 @@ fn certified(s: &shroud_surrogate::Surrogate) -> Result<()> {
 
 pub fn run(args: &BenchArgs) -> Result<()> {
     let threads = rayon::current_num_threads();
-    println!("# shroud bench surrogate ({threads} threads; medians of cold fits unless noted)\n");
+    println!("# shroud-bench surrogate ({threads} threads; medians of cold fits unless noted)\n");
     table1(args)?;
     table2(args)?;
     figure9(args)?;

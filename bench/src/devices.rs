@@ -1,4 +1,4 @@
-//! `shroud bench devices`: how fast the real-device drivers (Hokuyo SCIP,
+//! `shroud-bench devices`: how fast the real-device drivers (Hokuyo SCIP,
 //! RPLIDAR, Benewake) decode their streams, and how long a scan takes from
 //! its last byte to an encoded cloud message.
 //!
@@ -12,7 +12,6 @@
 
 use super::encode::encode_timed;
 use super::{median, timed, BenchArgs};
-use crate::transport::PayloadWriter;
 use anyhow::{bail, ensure, Result};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -23,8 +22,9 @@ use shroud_drivers::device::{
 };
 use shroud_drivers::rplidar::{RplidarConfig, RplidarDriver, ScanMode};
 use shroud_drivers::scip::{ScanCommand, ScipConfig, ScipDriver};
+use shroud_emulators::device::{emulator, EmulatorOptions, MeshRays, SerialDeviceEmulator};
 use shroud_graph::metrics::{LatencySummary, Percentiles};
-use shroud_sim::device::{emulator, EmulatorOptions, MeshRays, SerialDeviceEmulator};
+use shroud_nodes::transport::PayloadWriter;
 use shroud_sim::{Bvh, TableTop, DEFAULT_CYLINDER_SEGMENTS};
 use std::sync::Arc;
 use std::time::Instant;

@@ -1,4 +1,5 @@
-//! Timing helpers: medians of repeated runs.
+//! Timing helpers: medians of repeated runs (`shroud demo`'s fit times and
+//! the benchmark harness, `shroud-bench`).
 
 use std::time::Instant;
 
