@@ -14,6 +14,7 @@ mod error;
 mod field_of_view;
 mod fit_stats;
 mod joints;
+mod message;
 mod no_return;
 mod skew;
 mod smooth;
@@ -40,6 +41,7 @@ pub use field_of_view::sample_field_of_view;
 pub use field_of_view::{Aperture, FieldOfView};
 pub use fit_stats::{FitStats, Histogram};
 pub use joints::JointStateMessage;
+pub use message::{Message, WireOf};
 pub use no_return::sample_no_return;
 pub use no_return::{DarkCone, NoReturn, MAX_DARK_CONES};
 pub use skew::{

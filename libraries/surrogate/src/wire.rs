@@ -8,7 +8,8 @@ use glam::DVec3;
 use shroud_geometry::math::Frame;
 use shroud_geometry::spline::UniformCubicSurface;
 use shroud_msg::{
-    bytes_to_f64s, f64s_to_bytes, MessageError, SurfaceMessage, SurrogateMessage, SCHEMA_VERSION,
+    bytes_to_f64s, f64s_to_bytes, CloudView, MessageError, SurfaceMessage, SurrogateMessage,
+    SCHEMA_VERSION,
 };
 
 /// The conversions between a surrogate and its message.
@@ -22,6 +23,15 @@ pub trait SurrogateWire: Sized {
         source: &str,
         fit_ns: u64,
     ) -> Self;
+
+    /// The message of `s` fitted to `cloud`, `since_ns` after the cloud's
+    /// age was last counted (its transit to the fitter and its time there).
+    /// It carries the cloud's stamp, sequence and source; its position error
+    /// (the certificate is about the points as placed: the guard subtracts
+    /// how far the sensor may have misplaced them); where its sensor looked
+    /// and got no return (outside them the surface was not measured,
+    /// whatever the interpolation says); and its age so far.
+    fn of_cloud(s: &Surrogate, cloud: &CloudView<'_>, fit_ns: u64, since_ns: u64) -> Self;
 
     /// Decodes a message ([`SurrogateMessage::decode`]) and rebuilds the
     /// surrogate ([`SurrogateWire::to_surrogate`]).
@@ -69,6 +79,16 @@ impl SurrogateWire for SurrogateMessage {
             field_of_view: None,
             no_return: None,
         }
+    }
+
+    fn of_cloud(s: &Surrogate, cloud: &CloudView<'_>, fit_ns: u64, since_ns: u64) -> Self {
+        let mut msg =
+            Self::from_surrogate(s, cloud.stamp_ns, cloud.sequence, &cloud.source, fit_ns);
+        msg.position_error_m = cloud.position_error_m;
+        msg.field_of_view = cloud.field_of_view;
+        msg.no_return = cloud.no_return.clone();
+        msg.pipeline_ns = cloud.pipeline_ns.saturating_add(since_ns);
+        msg
     }
 
     fn from_bytes(bytes: &[u8]) -> Result<(Self, Surrogate), MessageError> {
@@ -172,6 +192,38 @@ mod tests {
         assert_eq!(
             first,
             &s.upper.as_ref().unwrap().surface.coefficients[0].to_le_bytes()
+        );
+    }
+
+    #[test]
+    fn a_surrogate_of_a_cloud_carries_its_stamps_its_view_and_its_age() {
+        let s = surrogate();
+        let points = [[0.0f32, 0.0, 0.0]];
+        let fov = shroud_msg::sample_field_of_view();
+        let cloud = CloudView::new(42, 3, "scan", shroud_msg::SensorPose::default(), &points)
+            .with_pipeline_ns(1_000)
+            .with_position_error_m(0.01)
+            .unwrap()
+            .with_field_of_view(fov)
+            .unwrap();
+        let msg = SurrogateMessage::of_cloud(&s, &cloud, 1500, 250);
+        assert_eq!(
+            (
+                msg.source_stamp_ns,
+                msg.source_sequence,
+                msg.source.as_str()
+            ),
+            (42, 3, "scan")
+        );
+        assert_eq!((msg.fit_ns, msg.pipeline_ns), (1500, 1_250));
+        assert_eq!(msg.position_error_m, 0.01);
+        assert_eq!(msg.field_of_view, Some(fov));
+        assert_eq!(msg.no_return, None);
+        let saturated = CloudView::new(42, 3, "scan", shroud_msg::SensorPose::default(), &points)
+            .with_pipeline_ns(u64::MAX);
+        assert_eq!(
+            SurrogateMessage::of_cloud(&s, &saturated, 1, 5).pipeline_ns,
+            u64::MAX
         );
     }
 

@@ -5,17 +5,16 @@
 //! stopped once the guard clears it again (wait and resume).
 
 use crate::arm_file::{joint_names, read_arm_file};
-use crate::runtime::{run_node, NodeCommon, NodeContext};
+use crate::runtime::{run_node, Arrival, NodeCommon, NodeContext};
 use crate::transport::{monotonic_ns, unix_ns};
 use anyhow::{Context, Result};
 use clap::Args;
 use shroud_graph::metrics::names::{self as metric, Counter};
 use shroud_guard::{ArmFile, Deadman, Motion, ResumeAfter, Trajectory, VerdictUse};
-use shroud_msg::{CollisionMessage, GuardVerdict, JointStateMessage, TopicKind};
+use shroud_msg::{CollisionMessage, GuardVerdict, JointStateMessage};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
-use zenoh::Wait;
 
 #[derive(Debug, Clone, Args)]
 pub struct ArmArgs {
@@ -96,7 +95,6 @@ fn serve(
         .arm
         .clone()
         .unwrap_or_else(|| file.arm.name().to_string());
-    let collision_key = ctx.key(TopicKind::Collision, &arm_name)?;
     let period = Duration::from_secs_f64(1.0 / args.rate);
     let deadline = Deadman::deadline_for(1.0 / args.rate, args.deadline, file.guard.horizon)?;
     let verdicts = Arc::new(Mutex::new(Verdicts {
@@ -105,18 +103,11 @@ fn serve(
     }));
     let _verdicts = {
         let (c, verdicts) = (ctx.clone(), verdicts.clone());
-        ctx.session
-            .declare_subscriber(&collision_key)
-            .callback(move |sample| {
-                match CollisionMessage::from_bytes(&sample.payload().to_bytes()) {
-                    Ok(msg) => on_verdict(&c, &verdicts, &msg),
-                    Err(e) => c.drop_malformed(sample.key_expr().as_str(), &e),
-                }
-            })
-            .wait()
-            .map_err(|e| anyhow::anyhow!("subscribe {collision_key}: {e}"))?
+        ctx.listen::<CollisionMessage>(&arm_name, move |_: &Arrival, msg: CollisionMessage| {
+            on_verdict(&c, &verdicts, &msg)
+        })?
     };
-    let publisher = ctx.publisher(TopicKind::Joints, &arm_name)?;
+    let joints = ctx.output::<JointStateMessage>(&arm_name)?;
     let names = joint_names(&file);
     let (mut motion_time, mut sequence) = (0.0f64, 0u64);
     let mut last = Instant::now();
@@ -152,10 +143,7 @@ fn serve(
         lock(&verdicts)
             .deadman
             .sent(sequence, stamp_ns, monotonic_ns());
-        match publisher.put(msg.to_bytes()?).wait() {
-            Ok(()) => ctx.metrics.add(metric::PUBLISHED, 1),
-            Err(e) => tracing::warn!("publish joints: {e}"),
-        }
+        joints.put(&msg);
         ctx.metrics.set(metric::TRAJECTORY_S, motion_time);
         sequence += 1;
         std::thread::sleep(period.saturating_sub(now.elapsed()));

@@ -9,8 +9,8 @@
 
 use crate::args::{points3, BlendShapeArgs};
 use crate::files;
-use crate::runtime::{run_node, NodeCommon, NodeContext};
-use crate::transport::{unix_ns, Mailbox, PayloadWriter};
+use crate::runtime::{run_node, Arrival, Input, NodeCommon, NodeContext, Output};
+use crate::transport::unix_ns;
 use anyhow::{Context, Result};
 use clap::Args;
 use shroud_graph::metrics::names as metric;
@@ -21,8 +21,6 @@ use shroud_shapes::blend::{
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use zenoh::bytes::ZBytes;
-use zenoh::Wait;
 
 #[derive(Debug, Clone, Args)]
 pub struct BlendNodeArgs {
@@ -82,7 +80,8 @@ pub fn run(args: BlendNodeArgs) -> Result<()> {
 }
 
 fn serve(ctx: Arc<NodeContext>, args: BlendNodeArgs, params: BlendParams) -> Result<()> {
-    let commands = ctx.key(TopicKind::Blend, &args.stream)?;
+    // A bad stream name is refused before the wait for the parent.
+    ctx.key(TopicKind::Blend, &args.stream)?;
     let output = args.output.as_deref().unwrap_or(&args.stream);
     let mut palette = Palette::new(&args, &params)?;
     let m = &ctx.metrics;
@@ -95,70 +94,58 @@ fn serve(ctx: Arc<NodeContext>, args: BlendNodeArgs, params: BlendParams) -> Res
     let mut session = BlendSession::new(parent, palette.take_first(), params);
     // Every command counts (a commit must not be lost), so the queue is deep;
     // the worker skips the drops a later drop supersedes instead.
-    let mailbox = Arc::new(Mailbox::new(1024));
-    let _subscriber = ctx.subscribe_into(&commands, &mailbox)?;
+    let commands = ctx.subscribe::<BlendCommandMessage>(&args.stream, 1024)?;
     // The model is large and each one supersedes the last: a cloud topic.
-    let publisher = ctx.publisher(TopicKind::Cloud, output)?;
-    let writer = ctx.payload_writer(64 << 20);
-    let mut out = Output {
+    let output = ctx.output_shared::<CloudMessage>(output, 64 << 20)?;
+    let mut model = Model {
         ctx: &ctx,
-        publisher: &publisher,
-        writer: &writer,
+        output: &output,
         source: format!("{}/blend", ctx.name),
         sequence: 0,
         parent_age,
     };
-    tracing::info!(%commands, %output, "blending");
-    out.publish(&session);
+    tracing::info!(commands = commands.key(), output = output.key(), "blending");
+    model.publish(&session);
     let mut last_publish = Instant::now();
     let republish = (args.republish > 0.0).then(|| Duration::from_secs_f64(args.republish));
     while !ctx.stopping() {
-        ctx.metrics
-            .set_counter(metric::DROPPED_BACKLOG, mailbox.dropped());
-        let Some(first) = mailbox.pop(Duration::from_millis(100)) else {
+        let Some(first) = commands.recv_timeout(Duration::from_millis(100)) else {
             if republish.is_some_and(|period| last_publish.elapsed() >= period) {
-                out.publish(&session);
+                model.publish(&session);
                 last_publish = Instant::now();
             }
             continue;
         };
         let mut batch = vec![first];
-        while let Some(more) = mailbox.pop(Duration::ZERO) {
+        while let Some(more) = commands.recv_timeout(Duration::ZERO) {
             batch.push(more);
         }
-        if apply_batch(&ctx, &mut session, &mut palette, &batch) {
-            out.publish(&session);
+        if apply_batch(&ctx, &commands, &mut session, &mut palette, &batch) {
+            model.publish(&session);
             last_publish = Instant::now();
         }
     }
-    mailbox.close();
     Ok(())
 }
 
 /// Decodes and applies a batch of commands; true when the model changed.
 fn apply_batch(
     ctx: &NodeContext,
+    commands: &Input<BlendCommandMessage>,
     session: &mut BlendSession,
     palette: &mut Palette,
-    batch: &[(String, ZBytes)],
+    batch: &[Arrival],
 ) -> bool {
     let decoded: Vec<(BlendCommand, Option<String>)> = batch
         .iter()
-        .filter_map(|(key, payload)| {
-            ctx.metrics.add(metric::RECEIVED, 1);
-            let decoded = BlendCommandMessage::from_bytes(&payload.to_bytes())
-                .and_then(|m| Ok((m.command()?, m.part)));
-            match decoded {
-                Ok(c) => Some(c),
-                Err(e) => {
-                    ctx.drop_malformed(key, &e);
-                    None
-                }
-            }
+        .filter_map(|arrival| {
+            let command = commands.decoded(arrival, |m| Ok((m.command()?, m.part)))?;
+            command
+                .map_err(|e: shroud_msg::MessageError| ctx.drop_malformed(&arrival.key, &e))
+                .ok()
         })
         .collect();
-    let commands: Vec<BlendCommand> = decoded.iter().map(|(c, _)| *c).collect();
-    let todo = supersede_indices(&commands);
+    let todo = supersede_indices(&decoded.iter().map(|(c, _)| *c).collect::<Vec<_>>());
     ctx.metrics
         .add(metric::SUPERSEDED, (decoded.len() - todo.len()) as u64);
     let mut changed = false;
@@ -303,10 +290,9 @@ fn prepare_child(
 }
 
 /// Where the blended model goes.
-struct Output<'a> {
+struct Model<'a> {
     ctx: &'a NodeContext,
-    publisher: &'a zenoh::pubsub::Publisher<'a>,
-    writer: &'a PayloadWriter,
+    output: &'a Output<CloudMessage>,
     source: String,
     sequence: u64,
     parent_age: DataAge,
@@ -328,7 +314,7 @@ impl DataAge {
     }
 }
 
-impl Output<'_> {
+impl Model<'_> {
     fn publish(&mut self, session: &BlendSession) {
         let (points, sources) = session.model();
         let xyz: Vec<[f32; 3]> = points.iter().map(|p| p.as_vec3().to_array()).collect();
@@ -344,18 +330,10 @@ impl Output<'_> {
         )
         .with_intensity(&codes)
         .with_pipeline_ns(self.parent_age.now_ns());
-        let sent = view
-            .aligned()
-            .and_then(|v| self.writer.encode(&v))
-            .map_err(anyhow::Error::from)
-            .and_then(|payload| {
-                self.publisher
-                    .put(payload)
-                    .wait()
-                    .map_err(|e| anyhow::anyhow!("{e}"))
-            });
-        match sent {
-            Ok(()) => self.ctx.metrics.add(metric::PUBLISHED, 1),
+        match view.aligned() {
+            Ok(view) => {
+                self.output.put(&view);
+            }
             Err(e) => {
                 self.ctx.metrics.add(metric::PUBLISH_ERRORS, 1);
                 tracing::warn!("publish the blended cloud: {e}");
@@ -370,7 +348,7 @@ impl Output<'_> {
 /// it), or the first valid cloud of its stream (`None` if the node is
 /// stopped first).
 fn parent(
-    ctx: &NodeContext,
+    ctx: &Arc<NodeContext>,
     args: &BlendNodeArgs,
     params: &BlendParams,
 ) -> Result<Option<(Prepared, DataAge)>> {
@@ -385,31 +363,31 @@ fn parent(
         return Ok(Some((parent, age)));
     }
     let stream = args.parent_stream.as_deref().unwrap_or("sim");
-    let key = ctx.key(TopicKind::Cloud, stream)?;
-    let subscriber = ctx
-        .session
-        .declare_subscriber(&key)
-        .wait()
-        .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))?;
-    tracing::info!(%key, "waiting for the parent cloud");
+    let input = ctx.subscribe::<CloudMessage>(stream, 1)?;
+    tracing::info!(key = input.key(), "waiting for the parent cloud");
     while !ctx.stopping() {
-        // A timeout is `Ok(None)`; an error means the subscriber is gone (the
-        // session closed): waiting on would spin, not wait.
-        let sample = match subscriber.recv_timeout(Duration::from_millis(100)) {
-            Ok(Some(sample)) => sample,
-            Ok(None) => continue,
-            Err(e) => anyhow::bail!("the parent stream {key} closed: {e}"),
+        let Some(arrival) = input.recv_timeout(Duration::from_millis(100)) else {
+            continue;
         };
-        let received = Instant::now();
-        let decoded = CloudMessage::from_bytes(&sample.payload().to_bytes())
-            .and_then(|m| Ok((m.point_array()?, m.pipeline_ns)));
+        let decoded = input.decoded(&arrival, |cloud| {
+            let mut points = Vec::new();
+            cloud
+                .read_points(&mut points)
+                .map(|()| (points, cloud.pipeline_ns))
+        });
         let (points, pipeline_ns) = match decoded {
-            Ok(decoded) => decoded,
-            Err(e) => {
-                ctx.drop_malformed(&key, &e);
+            Some(Ok(decoded)) => decoded,
+            Some(Err(e)) => {
+                ctx.drop_malformed(&arrival.key, &e);
                 continue;
             }
+            None => continue,
         };
+        // Its age runs from its arrival, on this node's clock.
+        let now = Instant::now();
+        let received = now
+            .checked_sub(Duration::from_nanos(arrival.held_ns()))
+            .unwrap_or(now);
         match Prepared::new(&points, "parent", params.normal_k) {
             Ok(parent) => {
                 let age = DataAge {
@@ -420,7 +398,7 @@ fn parent(
             }
             Err(e) => {
                 ctx.metrics.add(metric::PARENT_REFUSED, 1);
-                tracing::warn!("parent cloud from {key} refused: {e}");
+                tracing::warn!(key = input.key(), "parent cloud refused: {e}");
             }
         }
     }

@@ -7,17 +7,16 @@ use super::device_status::{mirror_driver_counters, report_health, report_identit
 use super::scan_publisher::CloudOut;
 use crate::args::CloudArgs;
 use crate::ingest::{host_now, run_device, DevicePortConfig, PortStats};
-use crate::runtime::NodeContext;
+use crate::runtime::{Arrival, Listener, NodeContext, NodeMetrics, OnMessage};
 use crate::transport::unix_ns;
 use anyhow::Result;
 use shroud_drivers::assembly::{AssembledCloud, CloudAssembler, MountMotion};
 use shroud_drivers::device::{DeviceDriver, DeviceState, DeviceStats, DriverOutput, RangeScan};
 use shroud_graph::metrics::names::{self as metric, Counter};
-use shroud_msg::{check_stamp_skew, JointStateMessage, TopicKind};
+use shroud_msg::{check_stamp_skew, JointStateMessage, MessageError};
 use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TrySendError};
 use std::sync::Arc;
 use std::time::Duration;
-use zenoh::Wait;
 
 /// Scans and joint samples waiting for the assembler.
 const ASSEMBLY_QUEUE: usize = 256;
@@ -204,46 +203,55 @@ fn subscribe_mount_joint(
     joint: String,
     tx: SyncSender<Input>,
     max_skew_ns: u64,
-) -> Result<zenoh::pubsub::Subscriber<()>> {
-    let key = ctx.key(TopicKind::Joints, topic)?;
-    let node = ctx.clone();
-    let subscriber = ctx
-        .session
-        .declare_subscriber(key.clone())
-        .callback(move |sample| {
-            let bytes = sample.payload().to_bytes();
-            let refuse = |counter: Counter, why: &dyn std::fmt::Display| {
-                node.metrics.add(counter, 1);
-                // Once, then every 1000th: a topic at 200 Hz must not flood the log.
-                let n = node.metrics.counter(counter);
-                if n == 1 || n.is_multiple_of(1000) {
-                    tracing::warn!(key, "{} ({n} so far): {why}", counter.name);
-                }
-            };
-            let msg = match JointStateMessage::from_bytes(&bytes) {
-                Ok(msg) => msg,
-                Err(e) => return refuse(metric::JOINT_SAMPLES_MALFORMED, &e),
-            };
-            let Some(i) = msg.names.iter().position(|n| *n == joint) else {
-                return refuse(
-                    metric::JOINT_SAMPLES_FOREIGN,
-                    &format!("no joint named {joint:?}"),
-                );
-            };
-            if let Err(skew) = check_stamp_skew(msg.stamp_ns, unix_ns(), max_skew_ns) {
-                return refuse(metric::CLOCK_SKEW, &format!("joint state {skew}"));
-            }
-            let angle = msg.positions[i];
-            offer(
-                &node,
-                &tx,
-                Input::Joint {
-                    unix_ns: msg.stamp_ns,
-                    angle,
-                },
-            );
-        })
-        .wait()
-        .map_err(|e| anyhow::anyhow!("subscribe {topic}: {e}"))?;
-    Ok(subscriber)
+) -> Result<Listener> {
+    let mount = MountJoint {
+        ctx: ctx.clone(),
+        joint,
+        tx,
+        max_skew_ns,
+    };
+    ctx.listen::<JointStateMessage>(topic, mount)
+}
+
+/// The mount's joint, from the joint states of its topic.
+struct MountJoint {
+    ctx: Arc<NodeContext>,
+    joint: String,
+    tx: SyncSender<Input>,
+    max_skew_ns: u64,
+}
+
+impl MountJoint {
+    /// Counts a refused message, and logs it once, then every 1000th: a topic
+    /// at 200 Hz must not flood the log.
+    fn refuse(&self, key: &str, counter: Counter, why: &dyn std::fmt::Display) {
+        let metrics = &self.ctx.metrics;
+        metrics.add(counter, 1);
+        let n = metrics.counter(counter);
+        if n == 1 || n.is_multiple_of(1000) {
+            tracing::warn!(key, "{} ({n} so far): {why}", counter.name);
+        }
+    }
+}
+
+impl OnMessage<JointStateMessage> for MountJoint {
+    fn on_message(&self, arrival: &Arrival, msg: JointStateMessage) {
+        let Some(i) = msg.names.iter().position(|n| *n == self.joint) else {
+            let why = format!("no joint named {:?}", self.joint);
+            return self.refuse(&arrival.key, metric::JOINT_SAMPLES_FOREIGN, &why);
+        };
+        if let Err(skew) = check_stamp_skew(msg.stamp_ns, unix_ns(), self.max_skew_ns) {
+            let why = format!("joint state {skew}");
+            return self.refuse(&arrival.key, metric::CLOCK_SKEW, &why);
+        }
+        let joint = Input::Joint {
+            unix_ns: msg.stamp_ns,
+            angle: msg.positions[i],
+        };
+        offer(&self.ctx, &self.tx, joint);
+    }
+
+    fn on_malformed(&self, _: &NodeMetrics, arrival: &Arrival, error: &MessageError) {
+        self.refuse(&arrival.key, metric::JOINT_SAMPLES_MALFORMED, error);
+    }
 }

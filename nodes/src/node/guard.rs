@@ -4,8 +4,8 @@
 //! trouble to the consumer's deadman.
 
 use crate::arm_file::{joint_names, read_arm_file};
-use crate::runtime::{run_node, NodeCommon, NodeContext};
-use crate::transport::{monotonic_ns, sample_published_ns, unix_ns};
+use crate::runtime::{run_node, Arrival, NodeCommon, NodeContext, NodeMetrics, OnMessage, Output};
+use crate::transport::monotonic_ns;
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use shroud_graph::metrics::names::{self as metric, Counter};
@@ -13,13 +13,12 @@ use shroud_guard::{
     ArmFile, CollisionGuard, Decision, Envelope, GuardPolicy, SurrogateInput, UnobservedPolicy,
 };
 use shroud_msg::{
-    max_skew_ns_from_secs, CollisionMessage, JointStateMessage, SurrogateMessage, TopicKind,
+    max_skew_ns_from_secs, CollisionMessage, JointStateMessage, MessageError, SurrogateMessage,
 };
 use shroud_surrogate::SurrogateWire;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
-use zenoh::Wait;
 
 #[derive(Debug, Clone, Args)]
 pub struct GuardArgs {
@@ -127,37 +126,34 @@ fn serve(
         .arm
         .clone()
         .unwrap_or_else(|| file.arm.name().to_string());
-    let joints_key = ctx.key(TopicKind::Joints, &arm_name)?;
-    let collision_key = ctx.key(TopicKind::Collision, &arm_name)?;
     let guard = Arc::new(Mutex::new(guard));
-    let mut subscribers = Vec::new();
+    let mut views = Vec::new();
     for (view, name) in args.surrogates.iter().enumerate() {
-        subscribers.push(subscribe_view(&ctx, &guard, view, name)?);
+        let feed = ViewFeed {
+            metrics: ctx.metrics.clone(),
+            guard: guard.clone(),
+            view,
+        };
+        views.push(ctx.listen::<SurrogateMessage>(name, feed)?);
     }
     // A stop must not be lost to congestion: the collision topic blocks
     // rather than drops, at real-time priority.
-    let publisher = ctx.publisher(TopicKind::Collision, &arm_name)?;
+    let verdicts = ctx.output::<CollisionMessage>(&arm_name)?;
+    let collision_key = verdicts.key().to_owned();
     let checker = Checker {
-        ctx: ctx.clone(),
+        metrics: ctx.metrics.clone(),
         names: joint_names(&file),
         file,
-        arm_name,
+        arm_name: arm_name.clone(),
         guard,
-        publisher,
+        verdicts,
     };
-    let _joints = ctx
-        .session
-        .declare_subscriber(&joints_key)
-        .callback(move |sample| {
-            checker.on_joints(sample.key_expr().as_str(), &sample.payload().to_bytes())
-        })
-        .wait()
-        .map_err(|e| anyhow::anyhow!("subscribe {joints_key}: {e}"))?;
-    tracing::info!(views = ?args.surrogates, %joints_key, %collision_key, "guarding");
+    let joints = ctx.listen::<JointStateMessage>(&arm_name, checker)?;
+    tracing::info!(views = ?args.surrogates, joints = joints.key(), %collision_key, "guarding");
     while !ctx.stopping() {
         std::thread::sleep(Duration::from_millis(100));
     }
-    drop(subscribers);
+    drop(views);
     Ok(())
 }
 
@@ -167,98 +163,100 @@ fn lock(guard: &Mutex<CollisionGuard>) -> MutexGuard<'_, CollisionGuard> {
 
 /// Feeds one view's surrogates into the guard, stamped with their arrival on
 /// this node's clocks (before the envelope is built, so that the building
-/// counts toward their age) and their publication's zenoh timestamp.
-fn subscribe_view(
-    ctx: &Arc<NodeContext>,
-    guard: &Arc<Mutex<CollisionGuard>>,
+/// counts toward their age) and their publication's zenoh timestamp. A
+/// surrogate that cannot be used withdraws the view's older one: newer data
+/// exists that the guard cannot read, so the older no longer vouches.
+struct ViewFeed {
+    metrics: Arc<NodeMetrics>,
+    guard: Arc<Mutex<CollisionGuard>>,
     view: usize,
-    name: &str,
-) -> Result<zenoh::pubsub::Subscriber<()>> {
-    let key = ctx.key(TopicKind::Surrogate, name)?;
-    let (c, guard) = (ctx.clone(), guard.clone());
-    ctx.session
-        .declare_subscriber(&key)
-        .callback(move |sample| {
-            let (arrived_ns, arrived_wall_ns) = (monotonic_ns(), unix_ns());
-            let key = sample.key_expr().to_string();
-            let Some(published_ns) = sample_published_ns(&sample) else {
-                lock(&guard).invalidate(view);
-                c.metrics.add(metric::NO_PUBLISH_STAMP, 1);
-                return tracing::warn!(%key, "surrogate without a zenoh timestamp: its transit is unknown");
-            };
-            let built = SurrogateMessage::from_bytes(&sample.payload().to_bytes())
-                .map_err(anyhow::Error::from)
-                .and_then(|(msg, s)| {
-                    let envelope = Envelope::new(&s)?
-                        .with_field_of_view(msg.field_of_view)?
-                        .with_no_return(msg.no_return.as_ref())?;
-                    Ok((msg, envelope))
-                });
-            let (msg, envelope) = match built {
-                Ok(built) => built,
-                Err(e) => {
-                    // Newer data exists that we cannot use: the older
-                    // surrogate no longer vouches for this view.
-                    lock(&guard).invalidate(view);
-                    return c.drop_malformed(&key, &e);
-                }
-            };
-            let input = SurrogateInput {
-                envelope,
-                stamp_ns: msg.source_stamp_ns,
-                sequence: msg.source_sequence,
-                pipeline_ns: msg.pipeline_ns,
-                published_ns,
-                position_error: msg.position_error_m,
-            };
-            // Not under the lock: a log line may block on a slow stderr.
-            let accepted = lock(&guard).accept(view, input, arrived_ns, arrived_wall_ns);
-            match accepted {
-                Ok(()) => c.metrics.add(metric::SURROGATES, 1),
-                Err(refused) => {
-                    c.metrics.add(Counter::of(refused.counter()), 1);
-                    tracing::warn!(%key, "surrogate refused: {refused}");
-                }
-            }
-        })
-        .wait()
-        .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))
 }
 
+impl OnMessage<SurrogateMessage> for ViewFeed {
+    fn on_message(&self, arrival: &Arrival, msg: SurrogateMessage) {
+        let key = &arrival.key;
+        let Some(published_ns) = arrival.published_ns else {
+            lock(&self.guard).invalidate(self.view);
+            self.metrics.add(metric::NO_PUBLISH_STAMP, 1);
+            return tracing::warn!(%key, "surrogate without a zenoh timestamp: its transit is unknown");
+        };
+        let envelope = msg
+            .to_surrogate()
+            .map_err(anyhow::Error::from)
+            .and_then(|s| {
+                Ok(Envelope::new(&s)?
+                    .with_field_of_view(msg.field_of_view)?
+                    .with_no_return(msg.no_return.as_ref())?)
+            });
+        let envelope = match envelope {
+            Ok(envelope) => envelope,
+            Err(e) => {
+                lock(&self.guard).invalidate(self.view);
+                return self.metrics.drop_malformed(key, &e);
+            }
+        };
+        let input = SurrogateInput {
+            envelope,
+            stamp_ns: msg.source_stamp_ns,
+            sequence: msg.source_sequence,
+            pipeline_ns: msg.pipeline_ns,
+            published_ns,
+            position_error: msg.position_error_m,
+        };
+        let arrived = (arrival.received_ns, arrival.received_wall_ns);
+        // Not under the lock: a log line may block on a slow stderr.
+        let accepted = lock(&self.guard).accept(self.view, input, arrived.0, arrived.1);
+        match accepted {
+            Ok(()) => self.metrics.add(metric::SURROGATES, 1),
+            Err(refused) => {
+                self.metrics.add(Counter::of(refused.counter()), 1);
+                tracing::warn!(%key, "surrogate refused: {refused}");
+            }
+        }
+    }
+
+    fn on_malformed(&self, metrics: &NodeMetrics, arrival: &Arrival, error: &MessageError) {
+        lock(&self.guard).invalidate(self.view);
+        metrics.drop_malformed(&arrival.key, error);
+    }
+}
+
+/// Answers every joint state, usable or not, with a verdict.
 struct Checker {
-    ctx: Arc<NodeContext>,
+    metrics: Arc<NodeMetrics>,
     file: ArmFile,
     names: Vec<String>,
     arm_name: String,
     guard: Arc<Mutex<CollisionGuard>>,
-    publisher: zenoh::pubsub::Publisher<'static>,
+    verdicts: Output<CollisionMessage>,
 }
 
-impl Checker {
-    /// Answers a joint state: a verdict when it can be checked, else a stop
-    /// that says why (and the message is counted as malformed).
-    fn on_joints(&self, key: &str, bytes: &[u8]) {
+impl OnMessage<JointStateMessage> for Checker {
+    /// A verdict when the joint state can be checked, else a stop that says
+    /// why (and the message is counted as malformed).
+    fn on_message(&self, arrival: &Arrival, msg: JointStateMessage) {
         let start = Instant::now();
-        let msg = match JointStateMessage::from_bytes(bytes) {
-            Ok(m) => m,
-            Err(e) => {
-                self.ctx.drop_malformed(key, &e);
-                let refused = Decision::refused(format!("undecodable joint state: {e}"));
-                // It answers no joint state: no sequence a consumer sent.
-                return self.publish(&refused, (0, u64::MAX), start);
-            }
-        };
         let id = (msg.stamp_ns, msg.sequence);
         let decision = match self.decide(&msg) {
             Ok(d) => d,
             Err(e) => {
-                self.ctx.drop_malformed(key, &e);
+                self.metrics.drop_malformed(&arrival.key, &e);
                 Decision::refused(format!("joint state not checked: {e:#}"))
             }
         };
         self.publish(&decision, id, start);
     }
 
+    fn on_malformed(&self, metrics: &NodeMetrics, arrival: &Arrival, error: &MessageError) {
+        let start = Instant::now();
+        metrics.drop_malformed(&arrival.key, error);
+        let refused = Decision::refused(format!("undecodable joint state: {error}"));
+        // It answers no joint state: no sequence a consumer sent.
+        self.publish(&refused, (0, u64::MAX), start);
+    }
+}
+
+impl Checker {
     fn decide(&self, joints: &JointStateMessage) -> Result<Decision> {
         anyhow::ensure!(
             joints.arm == self.arm_name,
@@ -282,8 +280,7 @@ impl Checker {
         let check_ns = start.elapsed().as_nanos() as u64;
         let out: CollisionMessage =
             lock(&self.guard).message(decision, &self.arm_name, joints, check_ns);
-        let m = &self.ctx.metrics;
-        m.add(metric::PUBLISHED, 1);
+        let m = &self.metrics;
         m.add(Counter::of(out.verdict.verdict_counter()), 1);
         if out.stop {
             m.add(metric::STOPS, 1);
@@ -291,14 +288,6 @@ impl Checker {
         m.set(metric::MIN_CLEARANCE, out.min_clearance);
         m.set(metric::SURROGATE_AGE_MS, out.surrogate_age_ns as f64 / 1e6);
         m.set(metric::CHECK_US, check_ns as f64 / 1e3);
-        match out.to_bytes() {
-            Ok(bytes) => {
-                if let Err(e) = self.publisher.put(bytes).wait() {
-                    m.add(metric::PUBLISH_ERRORS, 1);
-                    tracing::warn!("publish collision: {e}");
-                }
-            }
-            Err(e) => tracing::error!("encode collision: {e}"),
-        }
+        self.verdicts.put(&out);
     }
 }

@@ -4,15 +4,14 @@
 //! into the node's status.
 
 use crate::ingest::ReaderStats;
-use crate::runtime::NodeContext;
-use crate::transport::{unix_ns, PayloadWriter};
+use crate::runtime::{NodeContext, Output};
+use crate::transport::unix_ns;
 use anyhow::Result;
 use shroud_drivers::Scan;
 use shroud_graph::metrics::names as metric;
-use shroud_msg::{check_stamp_skew, max_skew_ns_from_secs, SensorPose, TopicKind};
+use shroud_msg::{check_stamp_skew, max_skew_ns_from_secs, CloudMessage, SensorPose};
 use std::sync::Arc;
 use std::time::Instant;
-use zenoh::Wait;
 
 /// `--max-skew` in seconds (`inf`: no check) as nanoseconds, or a named error.
 pub(super) fn max_skew_ns(seconds: f64) -> Result<u64> {
@@ -24,9 +23,7 @@ pub(super) fn max_skew_ns(seconds: f64) -> Result<u64> {
 /// `publish_errors` and `clock_skew`.
 pub(super) struct CloudOut<'a> {
     ctx: &'a Arc<NodeContext>,
-    publisher: zenoh::pubsub::Publisher<'static>,
-    key: String,
-    writer: PayloadWriter,
+    output: Output<CloudMessage>,
     device: String,
     source: String,
     max_skew_ns: u64,
@@ -40,11 +37,8 @@ impl<'a> CloudOut<'a> {
         device: &str,
         max_skew_ns: u64,
     ) -> Result<Self> {
-        let publisher = ctx.publisher(TopicKind::Cloud, stream)?;
         Ok(Self {
-            key: publisher.key_expr().to_string(),
-            publisher,
-            writer: ctx.payload_writer(16 << 20),
+            output: ctx.output_shared::<CloudMessage>(stream, 16 << 20)?,
             device: device.to_owned(),
             source: format!("{}/{device}", ctx.name),
             ctx,
@@ -71,23 +65,17 @@ impl<'a> CloudOut<'a> {
             self.ctx.metrics.add(metric::CLOCK_SKEW, 1);
             tracing::warn!(device = %self.device, "device {skew}");
         }
-        let published = scan
+        let view = scan
             .to_view(self.sequence, &self.source, SensorPose::default())
             .and_then(|view| view.with_position_error_m(position_error_m))
-            .map(|view| view.with_pipeline_ns(since_receipt()))
-            .and_then(|view| self.writer.encode(&view))
-            .map_err(anyhow::Error::from)
-            .and_then(|b| {
-                self.publisher
-                    .put(b)
-                    .wait()
-                    .map_err(|e| anyhow::anyhow!("{e}"))
-            });
-        match published {
-            Ok(()) => self.ctx.metrics.add(metric::PUBLISHED, 1),
+            .map(|view| view.with_pipeline_ns(since_receipt()));
+        match view {
+            Ok(view) => {
+                self.output.put(&view);
+            }
             Err(e) => {
                 self.ctx.metrics.add(metric::PUBLISH_ERRORS, 1);
-                tracing::warn!("publish {}: {e}", self.key);
+                tracing::warn!("publish {}: {e}", self.output.key());
             }
         }
         self.sequence += 1;

@@ -7,12 +7,11 @@ use crate::transport::unix_ns;
 use anyhow::{Context, Result};
 use clap::Args;
 use shroud_graph::metrics::names as metric;
-use shroud_msg::{CloudView, SensorPose, TopicKind};
+use shroud_msg::{CloudMessage, CloudView, SensorPose};
 use shroud_shapes::format::parse_triangle_mesh;
 use shroud_sim::{RangeScanner, ScanResolution, Scene};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use zenoh::Wait;
 
 #[derive(Debug, Clone, Args)]
 pub struct ScannerArgs {
@@ -103,15 +102,13 @@ fn scene(args: &ScannerArgs) -> Result<Scene> {
 }
 
 fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene) -> Result<()> {
-    let publisher = ctx.publisher(TopicKind::Cloud, &args.stream)?;
-    let key = publisher.key_expr().to_string();
     // Room for a few frames in flight: 12 bytes a point plus the header.
     let points = scene.points();
-    let writer = ctx.payload_writer(4 * (points * 12 + 4096));
-    tracing::info!(%key, scene = scene.name(), points, rate = args.rate, shm = writer.uses_shm(), "scanning");
-    if args.wait_subscribers > 0.0
-        && !ctx.wait_for_subscriber(&publisher, Duration::from_secs_f64(args.wait_subscribers))
-    {
+    let output = ctx.output_shared::<CloudMessage>(&args.stream, 4 * (points * 12 + 4096))?;
+    let key = output.key();
+    tracing::info!(%key, scene = scene.name(), points, rate = args.rate, shm = output.uses_shm(), "scanning");
+    let patience = Duration::from_secs_f64(args.wait_subscribers);
+    if args.wait_subscribers > 0.0 && !ctx.wait_for_subscriber(output.publisher(), patience) {
         tracing::warn!(%key, "no subscriber after --wait-subscribers: publishing anyway");
     }
     let period = Duration::from_secs_f64(1.0 / args.rate);
@@ -147,18 +144,7 @@ fn serve(ctx: Arc<NodeContext>, args: ScannerArgs, scene: Scene) -> Result<()> {
         if let Some(no_return) = no_return {
             msg = msg.with_no_return(no_return)?;
         }
-        let msg = msg.aligned()?;
-        let payload = writer.encode(&msg)?;
-        match publisher.put(payload).wait() {
-            Ok(()) => ctx.metrics.add(metric::PUBLISHED, 1),
-            Err(e) => {
-                ctx.metrics.add(metric::PUBLISH_ERRORS, 1);
-                tracing::warn!("publish {key}: {e}");
-            }
-        }
-        let (shm_sent, copied) = writer.counts();
-        ctx.metrics.set_counter(metric::SENT_SHM, shm_sent);
-        ctx.metrics.set_counter(metric::SENT_COPY, copied);
+        output.put(&msg.aligned()?);
         ctx.metrics.set(metric::POINTS, points.len() as f64);
         sequence += 1;
     }

@@ -7,17 +7,15 @@
 
 use crate::args::SmoothDomainArgs;
 use crate::runtime::{run_node, NodeCommon, NodeContext};
-use crate::transport::{unix_ns, Mailbox};
+use crate::transport::unix_ns;
 use anyhow::Result;
 use clap::Args;
 use shroud_graph::metrics::names as metric;
-use shroud_msg::{CloudView, TopicKind};
+use shroud_msg::{CloudMessage, CloudView, SmoothPatchesMessage};
 use shroud_shapes::smooth::{patches_message, SmoothFitReport};
 use shroud_shapes::smooth::{Parametrisation, SmoothFitter, SmoothSurface};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
-use zenoh::bytes::ZBytes;
-use zenoh::Wait;
+use std::time::Instant;
 
 #[derive(Debug, Clone, Args)]
 pub struct SmoothNodeArgs {
@@ -60,49 +58,37 @@ fn serve(
     parametrisation: Parametrisation,
     corrections: usize,
 ) -> Result<()> {
-    let input = ctx.key(TopicKind::Cloud, &args.input)?;
-    let publisher = ctx.publisher(
-        TopicKind::Smooth,
-        args.output.as_deref().unwrap_or(&args.input),
-    )?;
-    let output = publisher.key_expr().to_string();
-    let mailbox = Arc::new(Mailbox::new(1));
-    let _subscriber = ctx.subscribe_into(&input, &mailbox)?;
-    tracing::info!(%input, %output, functions = fitter.basis.len(), kind = parametrisation.kind(), "fitting");
+    let input = ctx.subscribe::<CloudMessage>(&args.input, 1)?;
+    let output =
+        ctx.output::<SmoothPatchesMessage>(args.output.as_deref().unwrap_or(&args.input))?;
+    tracing::info!(
+        input = input.key(),
+        output = output.key(),
+        functions = fitter.basis.len(),
+        kind = parametrisation.kind(),
+        "fitting"
+    );
     ctx.metrics
         .set(metric::FUNCTIONS, fitter.basis.len() as f64);
+    let setup = FitSetup {
+        fitter: &fitter,
+        parametrisation: &parametrisation,
+        lambda: args.lambda,
+        corrections,
+    };
     // The last surface published: a parametric fit of the next cloud starts
     // from it (fewer corrections for the same error on a steady object).
     let mut previous: Option<SmoothSurface> = None;
-    while !ctx.stopping() {
-        ctx.metrics
-            .set_counter(metric::DROPPED_BACKLOG, mailbox.dropped());
-        let Some((key, payload)) = mailbox.pop(Duration::from_millis(100)) else {
-            continue;
-        };
-        ctx.metrics.add(metric::RECEIVED, 1);
-        let setup = FitSetup {
-            fitter: &fitter,
-            parametrisation: &parametrisation,
-            lambda: args.lambda,
-            corrections,
-        };
-        match fit_one(&ctx, &setup, previous.as_ref(), &payload) {
-            Ok(Some((bytes, surface))) => {
+    input.for_each(
+        |arrival, cloud| match fit_one(&ctx, &setup, previous.as_ref(), &cloud) {
+            Ok(Some((message, surface))) => {
                 previous = Some(surface);
-                match publisher.put(bytes).wait() {
-                    Ok(()) => ctx.metrics.add(metric::PUBLISHED, 1),
-                    Err(e) => {
-                        ctx.metrics.add(metric::PUBLISH_ERRORS, 1);
-                        tracing::warn!("publish {output}: {e}");
-                    }
-                }
+                output.put(&message);
             }
             Ok(None) => {}
-            Err(e) => ctx.drop_malformed(&key, &e),
-        }
-    }
-    mailbox.close();
+            Err(e) => ctx.drop_malformed(&arrival.key, &e),
+        },
+    );
     Ok(())
 }
 
@@ -114,23 +100,21 @@ struct FitSetup<'a> {
     corrections: usize,
 }
 
-/// Decodes, fits and encodes one cloud, warm-started on `previous`. A
-/// malformed message is an error (the caller counts it); a cloud that cannot
-/// be fitted is logged and counted here, and gives `None`.
+/// Fits one cloud, warm-started on `previous`. A cloud whose points are
+/// not finite is an error (the caller counts it); a cloud that cannot be
+/// fitted is logged and counted here, and gives `None`.
 fn fit_one(
     ctx: &NodeContext,
     setup: &FitSetup<'_>,
     previous: Option<&SmoothSurface>,
-    payload: &ZBytes,
-) -> Result<Option<(Vec<u8>, SmoothSurface)>, shroud_msg::MessageError> {
+    msg: &CloudView<'_>,
+) -> Result<Option<(SmoothPatchesMessage, SmoothSurface)>, shroud_msg::MessageError> {
     let FitSetup {
         fitter,
         parametrisation,
         lambda,
         corrections,
     } = *setup;
-    let bytes = payload.to_bytes();
-    let msg = CloudView::from_bytes(&bytes)?;
     let mut points = Vec::new();
     msg.read_points(&mut points)?;
     let start = Instant::now();
@@ -174,6 +158,6 @@ fn fit_one(
         errors,
         fit_ns,
     };
-    let bytes = patches_message(&fitter.domain.mesh, &surface, &report).to_bytes()?;
-    Ok(Some((bytes, surface)))
+    let message = patches_message(&fitter.domain.mesh, &surface, &report);
+    Ok(Some((message, surface)))
 }

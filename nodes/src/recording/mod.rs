@@ -7,7 +7,6 @@
 mod disk;
 mod info;
 mod mcap_file;
-mod queue;
 mod reader;
 mod record;
 mod replay;

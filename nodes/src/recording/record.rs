@@ -5,23 +5,23 @@
 //! finished, and a summary printed.
 
 use super::mcap_file::{FileOptions, McapFile};
-use super::queue::WriteQueue;
 use super::shared::Recording;
 use super::views::{FoxgloveViews, ViewSettings};
 use super::writer::{run_writer, Arrival, WriterPlan, WrittenFile};
 use crate::arm_file::read_arm_file;
-use crate::runtime::{run_node, NodeCommon, NodeContext};
-use crate::transport::unix_ns;
+use crate::runtime::{self, run_node, NodeCommon, NodeContext};
+use crate::transport::WaitQueue;
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use shroud_graph::metrics::names as metric;
 use shroud_msg::TopicKey;
 use shroud_record::layout::recording_metadata;
-use shroud_record::{split_path, ChunkPolicy, DiskReserve, DropCause, SplitPolicy, TopicFilter};
+use shroud_record::{
+    split_path, ByteQueue, ChunkPolicy, DiskReserve, DropCause, SplitPolicy, TopicFilter,
+};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use zenoh::Wait;
 
 #[derive(Debug, Clone, Args)]
 pub struct RecordArgs {
@@ -203,7 +203,7 @@ fn views(args: &RecordArgs) -> Result<FoxgloveViews> {
 fn record(ctx: Arc<NodeContext>, plan: Plan, first: McapFile) -> Result<()> {
     let started = Instant::now();
     let recording = Arc::new(Recording::new(ctx.metrics.clone()));
-    let queue = Arc::new(WriteQueue::new(plan.queue_bytes));
+    let queue = Arc::new(WaitQueue::new(ByteQueue::new(plan.queue_bytes)));
     let writer = {
         let (queue, recording) = (queue.clone(), recording.clone());
         std::thread::Builder::new()
@@ -215,13 +215,10 @@ fn record(ctx: Arc<NodeContext>, plan: Plan, first: McapFile) -> Result<()> {
     let mut subscribers = Vec::new();
     for key in filter.subscriptions(ctx.topics.namespace()) {
         let (queue, recording, filter) = (queue.clone(), recording.clone(), filter.clone());
-        let subscriber = ctx
-            .session
-            .declare_subscriber(key.clone())
-            .callback(move |sample| on_sample(&sample, &filter, &queue, &recording))
-            .wait()
-            .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))?;
-        subscribers.push(subscriber);
+        let listener = ctx.listen_raw(&key, move |sample| {
+            on_sample(sample, &filter, &queue, &recording)
+        })?;
+        subscribers.push(listener);
     }
     tracing::info!("recording");
     while !ctx.stopping()
@@ -248,13 +245,13 @@ fn record(ctx: Arc<NodeContext>, plan: Plan, first: McapFile) -> Result<()> {
 /// A sample from zenoh's thread: matched against the filter, stamped, and
 /// queued (or counted as dropped).
 fn on_sample(
-    sample: &zenoh::sample::Sample,
+    sample: runtime::Arrival,
     filter: &TopicFilter,
-    queue: &WriteQueue<Arrival>,
+    queue: &WaitQueue<ByteQueue<Arrival>>,
     recording: &Recording,
 ) {
-    let log_ns = unix_ns();
-    let topic = sample.key_expr().as_str();
+    let log_ns = sample.received_wall_ns;
+    let topic = sample.key.as_str();
     let Some(key) = TopicKey::parse(topic).filter(|k| filter.matches(k)) else {
         return;
     };
@@ -263,16 +260,9 @@ fn on_sample(
         recording.dropped(topic, cause);
         return;
     }
-    let publish_ns = sample
-        .timestamp()
-        .and_then(|t| {
-            t.get_time()
-                .to_system_time()
-                .duration_since(std::time::UNIX_EPOCH)
-                .ok()
-        })
-        .map_or(log_ns, |d| d.as_nanos() as u64);
-    let payload = sample.payload().clone();
+    // Without a zenoh timestamp, its publication is taken as its arrival.
+    let publish_ns = sample.published_ns.unwrap_or(log_ns);
+    let payload = sample.payload.clone();
     let len = payload.len();
     let arrival = Arrival {
         key,
@@ -281,7 +271,8 @@ fn on_sample(
         log_ns,
         publish_ns,
     };
-    if queue.push(arrival, len).is_err() {
+    // Full, or closed as the recording ends.
+    if queue.push(|q| q.push(arrival, len).is_ok()) != Some(true) {
         recording.dropped(topic, DropCause::QueueFull);
     }
 }

@@ -8,13 +8,12 @@
 
 use super::disk::free_bytes;
 use super::mcap_file::{FileOptions, McapFile, StoredMessage};
-use super::queue::WriteQueue;
 use super::shared::Recording;
 use super::views::FoxgloveViews;
-use crate::transport::unix_ns;
+use crate::transport::{unix_ns, WaitQueue};
 use anyhow::Result;
 use shroud_msg::TopicKey;
-use shroud_record::{split_path, ChunkPolicy, DiskReserve, DropCause, SplitPolicy};
+use shroud_record::{split_path, ByteQueue, ChunkPolicy, DiskReserve, DropCause, SplitPolicy};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -67,7 +66,7 @@ struct Writer {
 pub fn run_writer(
     plan: WriterPlan,
     first: McapFile,
-    queue: Arc<WriteQueue<Arrival>>,
+    queue: Arc<WaitQueue<ByteQueue<Arrival>>>,
     recording: Arc<Recording>,
 ) -> Vec<WrittenFile> {
     let mut writer = Writer {
@@ -80,13 +79,13 @@ pub fn run_writer(
         recording,
     };
     loop {
-        match queue.pop(IDLE_POLL) {
+        match queue.take(IDLE_POLL) {
             Some(arrival) => writer.take(arrival),
-            None if queue.is_closed_and_empty() => break,
+            None if queue.is_drained() => break,
             None => writer.write_periodic_views(unix_ns()),
         }
         writer.close_chunk_if_due();
-        writer.recording.queue_bytes(queue.bytes());
+        writer.recording.queue_bytes(queue.read(|q| q.bytes()));
     }
     writer.finish_file();
     writer.written

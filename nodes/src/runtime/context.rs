@@ -1,15 +1,18 @@
 //! What a node's body is handed: the session, its topics and metrics, the stop
-//! flag, and publishers that follow the topic's QoS and the node's `--shm`.
+//! flag, its typed inputs and outputs (QoS by topic kind, shared memory by
+//! the node's `--shm`), and raw publishers for what is not typed (a replay).
 
+use super::arrival::Arrival;
+use super::input::Input;
+use super::listener::{Listener, OnMessage};
 use super::metrics::NodeMetrics;
-use crate::transport::{topic_publisher, Mailbox, PayloadWriter, ZenohArgs};
+use super::output::Output;
+use crate::transport::{topic_publisher, PayloadWriter, ZenohArgs};
 use anyhow::Result;
 use clap::Args;
-use shroud_graph::metrics::names as metric;
-use shroud_msg::{TopicKind, Topics};
+use shroud_msg::{Message, TopicKind, Topics};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
-use zenoh::bytes::ZBytes;
 use zenoh::Wait;
 
 /// How long [`NodeContext::wait_for_subscriber`] waits after the first
@@ -55,21 +58,55 @@ impl NodeContext {
         Ok(self.topics.key(kind, name)?)
     }
 
-    /// Subscribes to `key`, handing every sample's key and payload to
-    /// `mailbox` (the worker thread decodes them, not zenoh's).
-    pub fn subscribe_into(
+    /// A queued input of messages `M` from `shroud/<ns>/<M::KIND>/<name>`,
+    /// keeping at most `queue` samples (the oldest dropped and counted).
+    pub fn subscribe<M: Message>(self: &Arc<Self>, name: &str, queue: usize) -> Result<Input<M>> {
+        let key = self.key(M::KIND, name)?;
+        Input::new(
+            &self.session,
+            key,
+            queue,
+            self.metrics.clone(),
+            self.stop.clone(),
+        )
+    }
+
+    /// Messages `M` from `shroud/<ns>/<M::KIND>/<name>` handed to `handler`
+    /// in zenoh's callback, as they arrive.
+    pub fn listen<M: Message>(&self, name: &str, handler: impl OnMessage<M>) -> Result<Listener> {
+        let key = self.key(M::KIND, name)?;
+        Listener::new(&self.session, key, self.metrics.clone(), handler)
+    }
+
+    /// Every sample of the key expression `key` (wildcards allowed), raw, to
+    /// `handler` in zenoh's callback: for a recorder or a viewer, which keep
+    /// or forward payloads of many kinds.
+    pub fn listen_raw(
         &self,
         key: &str,
-        mailbox: &Arc<Mailbox<(String, ZBytes)>>,
-    ) -> Result<zenoh::pubsub::Subscriber<()>> {
-        let inbox = mailbox.clone();
-        self.session
-            .declare_subscriber(key.to_owned())
-            .callback(move |sample| {
-                inbox.push((sample.key_expr().to_string(), sample.payload().clone()));
-            })
-            .wait()
-            .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))
+        handler: impl Fn(Arrival) + Send + Sync + 'static,
+    ) -> Result<Listener> {
+        Listener::raw(&self.session, key.to_owned(), handler)
+    }
+
+    /// An output of messages `M` on `shroud/<ns>/<M::KIND>/<name>`.
+    pub fn output<M: Message>(&self, name: &str) -> Result<Output<M>> {
+        self.output_shared(name, 0)
+    }
+
+    /// [`Self::output`] for large messages: through a shared segment of
+    /// `pool_bytes` (a few messages' worth) unless the node runs with
+    /// `--shm off`.
+    pub fn output_shared<M: Message>(&self, name: &str, pool_bytes: usize) -> Result<Output<M>> {
+        let key = self.key(M::KIND, name)?;
+        let writer = self.payload_writer(pool_bytes);
+        Output::new(
+            &self.session,
+            key,
+            writer,
+            pool_bytes > 0,
+            self.metrics.clone(),
+        )
     }
 
     /// A publisher on `shroud/<ns>/<kind>/<name>` with the topic's documented
@@ -120,7 +157,6 @@ impl NodeContext {
 
     /// A message that could not be used: logged with its key and counted.
     pub fn drop_malformed(&self, key: &str, error: &dyn std::fmt::Display) {
-        self.metrics.add(metric::DROPPED_MALFORMED, 1);
-        tracing::warn!(key, "dropped a malformed message: {error}");
+        self.metrics.drop_malformed(key, error);
     }
 }

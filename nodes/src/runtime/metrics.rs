@@ -1,7 +1,7 @@
 //! A node's counters and gauges, shared between its worker threads and the
 //! status publisher.
 
-use shroud_graph::metrics::names::{Counter, Gauge};
+use shroud_graph::metrics::names::{self, Counter, Gauge};
 use shroud_msg::NodeStatusMessage;
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -54,6 +54,13 @@ impl NodeMetrics {
 
     pub fn label(&self, label: &str) -> Option<String> {
         lock(&self.labels).get(label).cloned()
+    }
+
+    /// A message that could not be used: counted (`dropped_malformed`) and
+    /// logged with its key.
+    pub fn drop_malformed(&self, key: &str, error: &dyn std::fmt::Display) {
+        self.add(names::DROPPED_MALFORMED, 1);
+        tracing::warn!(key, "dropped a malformed message: {error}");
     }
 
     pub fn counter(&self, counter: Counter) -> u64 {

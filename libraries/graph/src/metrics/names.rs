@@ -57,13 +57,17 @@ pub const RECEIVED: Counter = counter(
 );
 pub const PUBLISHED: Counter = counter(
     "published",
-    &[Scanner, Fit, Guard, Arm, Serial, Can, Blend, Smooth, Replay],
-    "messages published (the guard counts each verdict before it is put)",
+    &[
+        Scanner, Fit, Guard, Arm, Serial, Can, Blend, Smooth, Replay, Dashboard, Foxglove,
+    ],
+    "messages handed to zenoh (a verdict, once its put returned)",
 );
 pub const PUBLISH_ERRORS: Counter = counter(
     "publish_errors",
-    &[Scanner, Fit, Guard, Serial, Can, Blend, Smooth, Replay],
-    "messages zenoh refused to publish (logged)",
+    &[
+        Scanner, Fit, Guard, Arm, Serial, Can, Blend, Smooth, Replay, Dashboard, Foxglove,
+    ],
+    "messages that could not be encoded or that zenoh refused to publish (logged)",
 );
 pub const DROPPED_MALFORMED: Counter = counter(
     "dropped_malformed",
@@ -215,8 +219,16 @@ pub const MISSED_TICKS: Counter = counter(
     &[Scanner],
     "frames not published on time because the last one took too long",
 );
-pub const SENT_SHM: Counter = counter("sent_shm", &[Scanner], "clouds sent through shared memory");
-pub const SENT_COPY: Counter = counter("sent_copy", &[Scanner], "clouds sent by copy");
+pub const SENT_SHM: Counter = counter(
+    "sent_shm",
+    &[Scanner, Serial, Can, Blend],
+    "clouds sent through shared memory",
+);
+pub const SENT_COPY: Counter = counter(
+    "sent_copy",
+    &[Scanner, Serial, Can, Blend],
+    "clouds sent by copy (below 64 KiB, with --shm off, or with the segment full)",
+);
 pub const OPENS: Counter = counter("opens", &[Serial, Can], "times the device was opened");
 pub const OPEN_FAILURES: Counter = counter(
     "open_failures",

@@ -2,21 +2,21 @@
 //! one the viewer drives), one publisher per blend stream, counting them.
 
 use crate::node::NodeContext;
+use crate::runtime::Output;
 use crate::transport::unix_ns;
 use shroud_graph::metrics::names as metric;
-use shroud_msg::{BlendCommandMessage, TopicKind};
+use shroud_msg::BlendCommandMessage;
 use shroud_shapes::blend::BlendCommand;
 use shroud_viewers::dashboard::BlendPalette;
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
-use zenoh::Wait;
 
 /// See the module documentation.
 #[derive(Default)]
 pub struct BlendSender {
     sequence: AtomicU64,
-    publishers: Mutex<BTreeMap<String, zenoh::pubsub::Publisher<'static>>>,
+    outputs: Mutex<BTreeMap<String, Output<BlendCommandMessage>>>,
 }
 
 impl BlendSender {
@@ -43,19 +43,20 @@ impl BlendSender {
         let sequence = self.sequence.fetch_add(1, Ordering::Relaxed);
         let mut msg = BlendCommandMessage::new(unix_ns(), sequence, command);
         msg.part = part.map(String::from);
-        let bytes = msg.to_bytes().map_err(|e| e.to_string())?;
-        let mut publishers = self.publishers.lock().unwrap_or_else(|p| p.into_inner());
-        if !publishers.contains_key(&palette.stream) {
-            let publisher = ctx
-                .publisher(TopicKind::Blend, &palette.stream)
+        let mut outputs = self.outputs.lock().unwrap_or_else(|p| p.into_inner());
+        if !outputs.contains_key(&palette.stream) {
+            let output = ctx
+                .output::<BlendCommandMessage>(&palette.stream)
                 .map_err(|e| format!("{e:#}"))?;
-            publishers.insert(palette.stream.clone(), publisher);
+            outputs.insert(palette.stream.clone(), output);
         }
-        let publisher = &publishers[&palette.stream];
-        publisher
-            .put(bytes)
-            .wait()
-            .map_err(|e| format!("publish: {e}"))?;
+        let output = &outputs[&palette.stream];
+        if !output.put(&msg) {
+            return Err(format!(
+                "could not publish on {} (see the node's log)",
+                output.key()
+            ));
+        }
         ctx.metrics.add(metric::BLEND_COMMANDS, 1);
         Ok(())
     }

@@ -3,6 +3,7 @@
 
 use super::inbox::Inbox;
 use crate::node::NodeContext;
+use crate::runtime::Listener;
 use anyhow::Result;
 use shroud_msg::{TopicKey, TopicKind};
 use std::sync::mpsc;
@@ -12,10 +13,7 @@ use zenoh::Wait;
 
 /// Clouds, surrogates, smooth fits, joint states, verdicts and status of the
 /// whole namespace into `inbox`.
-pub fn subscribe_drawables(
-    ctx: &NodeContext,
-    inbox: &Arc<Inbox>,
-) -> Result<Vec<zenoh::pubsub::Subscriber<()>>> {
+pub fn subscribe_drawables(ctx: &NodeContext, inbox: &Arc<Inbox>) -> Result<Vec<Listener>> {
     [
         TopicKind::Cloud,
         TopicKind::Surrogate,
@@ -28,13 +26,9 @@ pub fn subscribe_drawables(
     .map(|kind| {
         let key = ctx.key(kind, "*")?;
         let inbox = inbox.clone();
-        ctx.session
-            .declare_subscriber(&key)
-            .callback(move |sample| {
-                inbox.push(sample.key_expr().as_str(), sample.payload().clone())
-            })
-            .wait()
-            .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))
+        ctx.listen_raw(&key, move |arrival| {
+            inbox.push(&arrival.key, arrival.payload)
+        })
     })
     .collect()
 }

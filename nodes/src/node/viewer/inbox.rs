@@ -4,13 +4,13 @@
 //! callback never decodes nor waits: a 300K-point cloud at 30 Hz costs it a
 //! slot swap.
 
-use crate::transport::monotonic_ns;
+use crate::transport::{monotonic_ns, WaitQueue};
 use shroud_graph::backlog::LatestByKey;
 use shroud_graph::metrics::RateMeter;
 use shroud_msg::{TopicKey, TopicKind};
 use shroud_viewers::dashboard::TopicRate;
 use std::collections::BTreeMap;
-use std::sync::{Condvar, Mutex, MutexGuard};
+use std::sync::{Mutex, MutexGuard};
 use std::time::Duration;
 use zenoh::bytes::ZBytes;
 
@@ -18,7 +18,7 @@ use zenoh::bytes::ZBytes;
 const RATE_WINDOW_NS: u64 = 2_000_000_000;
 
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
-    // Every critical section is a single slot or counter update.
+    // Every critical section is a single counter update.
     m.lock().unwrap_or_else(|p| p.into_inner())
 }
 
@@ -41,16 +41,14 @@ pub struct Arrival {
 
 /// See the module documentation.
 pub struct Inbox {
-    pending: Mutex<LatestByKey<TopicKey, Arrival>>,
-    ready: Condvar,
+    pending: WaitQueue<LatestByKey<TopicKey, Arrival>>,
     traffic: Mutex<BTreeMap<String, Traffic>>,
 }
 
 impl Inbox {
     pub fn new() -> Self {
         Self {
-            pending: Mutex::new(LatestByKey::default()),
-            ready: Condvar::new(),
+            pending: WaitQueue::new(LatestByKey::default()),
             traffic: Mutex::new(BTreeMap::new()),
         }
     }
@@ -62,14 +60,11 @@ impl Inbox {
             return; // not a shroud topic: nothing a viewer can show
         };
         self.count(&topic, payload.len() as u64, now);
-        lock(&self.pending).put(
-            topic,
-            Arrival {
-                payload,
-                received_ns: now,
-            },
-        );
-        self.ready.notify_one();
+        let arrival = Arrival {
+            payload,
+            received_ns: now,
+        };
+        self.pending.push(|pending| pending.put(topic, arrival));
     }
 
     fn count(&self, topic: &TopicKey, bytes: u64, now: u64) {
@@ -89,17 +84,12 @@ impl Inbox {
 
     /// The oldest pending sample, waiting up to `timeout` for one.
     pub fn take(&self, timeout: Duration) -> Option<(TopicKey, Arrival)> {
-        let pending = lock(&self.pending);
-        let (mut pending, _) = self
-            .ready
-            .wait_timeout_while(pending, timeout, |p| p.is_empty())
-            .unwrap_or_else(|p| p.into_inner());
-        pending.take()
+        self.pending.take(timeout)
     }
 
     /// Samples replaced before the viewer took them.
     pub fn superseded(&self) -> u64 {
-        lock(&self.pending).superseded()
+        self.pending.read(|pending| pending.superseded())
     }
 
     /// Each topic's rate, message count and bytes per second since the last call.
