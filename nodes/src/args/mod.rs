@@ -1,5 +1,5 @@
-//! Command-line option groups that a CLI subcommand and a node share, in one
-//! place so that neither imports the other.
+//! Command-line option groups that a CLI subcommand and a node share, or that
+//! several nodes share, in one place so that neither imports the other.
 
 mod blend;
 mod can_device;
@@ -8,6 +8,7 @@ mod emulator;
 mod mount;
 mod smooth;
 mod surrogate;
+mod viewer;
 mod web_listen;
 
 pub use blend::{points3, BlendShapeArgs};
@@ -19,4 +20,5 @@ pub use emulator::EmulatorArgs;
 pub use mount::{CloudArgs, MountArgs, MountAxis};
 pub use smooth::{DomainKind, SmoothDomainArgs};
 pub use surrogate::SurrogateShapeArgs;
+pub use viewer::{ViewerArgs, ViewerSettings};
 pub use web_listen::take_web_listen;

@@ -73,6 +73,8 @@ fn setting_args(command: &clap::Command, spec: &NodeSpec) -> Result<Vec<String>,
             .get_arguments()
             .find(|a| {
                 a.get_long() == Some(long.as_str())
+                    || a.get_all_aliases()
+                        .is_some_and(|v| v.contains(&long.as_str()))
                     || (a.is_positional() && a.get_id().as_str() == id)
             })
             .ok_or_else(|| {
@@ -197,6 +199,21 @@ mod tests {
                 "--parent=p.ply"
             ]
         );
+    }
+
+    /// A setting may name an option by its alias (the viewers' `points_budget`).
+    #[test]
+    fn an_alias_is_a_setting_too() {
+        for kind in ["dashboard", "foxglove"] {
+            for key in ["point_budget", "points_budget"] {
+                let text = format!(
+                    "[[node]]\nname = \"v\"\nkind = \"{kind}\"\nsettings = {{ {key} = 2000 }}\n"
+                );
+                let nodes = planned(&text).unwrap();
+                let flag = format!("--{}=2000", key.replace('_', "-"));
+                assert!(nodes[0].args.contains(&flag), "{kind}: {:?}", nodes[0].args);
+            }
+        }
     }
 
     #[test]

@@ -49,54 +49,7 @@ impl TriangleMesh {
         }
         out.into_bytes()
     }
-
-    /// PLY with float x, y, z vertices and `list uchar int vertex_indices` faces,
-    /// ASCII or binary little endian. Vertices are narrowed to f32, as viewers
-    /// expect.
-    pub fn to_ply(&self, ascii: bool) -> Vec<u8> {
-        let encoding = if ascii {
-            "ascii"
-        } else {
-            "binary_little_endian"
-        };
-        let header = format!(
-            "ply\nformat {encoding} 1.0\ncomment written by shroud\nelement vertex {}\nproperty float x\n\
-             property float y\nproperty float z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
-            self.vertices.len(),
-            self.triangles.len()
-        );
-        let mut out = header.into_bytes();
-        if ascii {
-            self.write_ascii_body(&mut out);
-        } else {
-            self.write_binary_body(&mut out);
-        }
-        out
-    }
-
-    fn write_ascii_body(&self, out: &mut Vec<u8>) {
-        for v in &self.vertices {
-            let [x, y, z] = v.map(|c| c as f32);
-            out.extend_from_slice(format!("{x} {y} {z}\n").as_bytes());
-        }
-        for [a, b, c] in &self.triangles {
-            out.extend_from_slice(format!("3 {a} {b} {c}\n").as_bytes());
-        }
-    }
-
-    fn write_binary_body(&self, out: &mut Vec<u8>) {
-        out.reserve(self.vertices.len() * 12 + self.triangles.len() * 13);
-        for v in &self.vertices {
-            v.iter()
-                .for_each(|&c| out.extend_from_slice(&(c as f32).to_le_bytes()));
-        }
-        for t in &self.triangles {
-            out.push(3);
-            // `int` indices: the same bytes as u32 below 2^31 vertices.
-            t.iter()
-                .for_each(|&i| out.extend_from_slice(&i.to_le_bytes()));
-        }
-    }
+    // `to_ply` is written beside the other PLY writers, in `format::ply::write`.
 }
 
 #[cfg(test)]

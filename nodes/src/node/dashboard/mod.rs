@@ -11,8 +11,7 @@ mod http;
 mod hub;
 
 use super::viewer::{subscribe_drawables, watch_tokens, BlendSender, Inbox};
-use crate::args::take_web_listen;
-use crate::arm_file::read_arm_file;
+use crate::args::{take_web_listen, ViewerArgs};
 use crate::runtime::{run_node, NodeCommon, NodeContext};
 use anyhow::{Context, Result};
 use builder::{BuilderConfig, FrameBuilder, Shared};
@@ -20,7 +19,6 @@ use clap::Args;
 use http::Http;
 use hub::Hub;
 use std::net::SocketAddr;
-use std::path::PathBuf;
 use std::sync::mpsc;
 use std::sync::Arc;
 use std::time::Duration;
@@ -29,49 +27,19 @@ use std::time::Duration;
 pub struct DashboardArgs {
     #[command(flatten)]
     pub common: NodeCommon,
-    /// Most points of each cloud sent to a browser (a browser may ask for fewer).
-    #[arg(long, default_value_t = 60_000)]
-    pub point_budget: usize,
-    /// An arm file (as the guard's) whose arm is drawn at its joint states. Repeatable.
-    #[arg(long = "arm-file", value_name = "FILE")]
-    pub arm_files: Vec<PathBuf>,
-    /// Seconds without a verdict after which an arm shows `no-verdict` (STOP).
-    #[arg(long, default_value_t = 0.5)]
-    pub verdict_timeout: f64,
-    /// The blend node to drive (its command stream); default: the first that
-    /// announces itself in the namespace.
-    #[arg(long)]
-    pub blend_stream: Option<String>,
-    /// Most frames a second of each cloud, surrogate and smooth fit sent to
-    /// the browsers (the latest waits; arms, verdicts and nodes are not
-    /// paced): what a viewer needs, and what keeps a 30 Hz 300K-point stream
-    /// from costing the robot's cores.
-    #[arg(long, default_value_t = 10.0)]
-    pub max_rate: f64,
+    #[command(flatten)]
+    pub viewer: ViewerArgs,
 }
 
 /// Where `--listen` serves unless told otherwise.
 const DEFAULT_LISTEN: &str = "127.0.0.1:8080";
 
+/// `--point-budget` unless told otherwise.
+const DEFAULT_POINT_BUDGET: usize = 60_000;
+
 pub fn run(mut args: DashboardArgs) -> Result<()> {
     let listen = take_web_listen(&mut args.common.zenoh, DEFAULT_LISTEN)?;
-    anyhow::ensure!(
-        (1000..=2_000_000).contains(&args.point_budget),
-        "--point-budget must be 1000 to 2000000 points"
-    );
-    anyhow::ensure!(
-        args.verdict_timeout.is_finite() && args.verdict_timeout > 0.0,
-        "--verdict-timeout must be a positive number of seconds"
-    );
-    anyhow::ensure!(
-        args.max_rate.is_finite() && args.max_rate > 0.0 && args.max_rate <= 1000.0,
-        "--max-rate must be more than 0 and at most 1000 frames a second"
-    );
-    let arms = args
-        .arm_files
-        .iter()
-        .map(|path| read_arm_file(path).map(|file| file.arm))
-        .collect::<Result<Vec<_>>>()?;
+    let viewer = args.viewer.settings(DEFAULT_POINT_BUDGET)?;
     // Bound before the node joins the graph: a taken port is an error now,
     // not a node that runs without its page.
     let listener = std::net::TcpListener::bind(listen).with_context(|| {
@@ -82,11 +50,11 @@ pub fn run(mut args: DashboardArgs) -> Result<()> {
     let config = BuilderConfig {
         namespace: common.zenoh.namespace.clone(),
         node: String::new(),
-        point_budget: args.point_budget,
-        arms,
-        verdict_timeout_ns: (args.verdict_timeout * 1e9) as u64,
-        blend_stream: args.blend_stream.clone(),
-        pace_ns: (1e9 / args.max_rate) as u64,
+        point_budget: viewer.point_budget,
+        arms: viewer.arms,
+        verdict_timeout_ns: viewer.verdict_timeout_ns,
+        blend_stream: viewer.blend_stream,
+        pace_ns: viewer.pace_ns,
     };
     run_node(&common, "dashboard", move |ctx| {
         serve(ctx, listener, config)

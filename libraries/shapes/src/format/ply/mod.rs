@@ -3,7 +3,7 @@
 //! other property and element is skipped. Triangle meshes (vertices plus the
 //! `face` element) are read by [`parse_ply_mesh`] with the same record readers.
 //! Point clouds, with any further per-vertex properties, are written by
-//! [`write_ply_vertices`].
+//! [`write_ply_vertices`], and meshes by `TriangleMesh::to_ply` with the same header.
 
 mod ascii_body;
 mod binary_body;

@@ -1,8 +1,10 @@
-//! Writing point clouds as PLY (binary little endian by default, or ASCII): the
-//! one place that writes the header and vertex records of PLY point clouds
-//! (plain clouds here, blended models through `blend::write_ply_with_normals`).
+//! Writing point clouds and triangle meshes as PLY (binary little endian by
+//! default, or ASCII): the one place that writes PLY headers and records (plain
+//! clouds here, blended models through `blend::write_ply_with_normals`, meshes
+//! through `TriangleMesh::to_ply`).
 
 use crate::format::point_rows::{push_records, Column};
+use crate::format::TriangleMesh;
 
 /// A property of every vertex after x, y, z: its PLY name and one value per point.
 #[derive(Debug, Clone, Copy)]
@@ -55,19 +57,66 @@ pub fn write_ply_points(points: &[[f32; 3]], intensity: Option<&[f32]>, ascii: b
 /// A PLY file of `vertices`. A property without exactly one value per point is
 /// left out rather than misalign the records.
 pub(crate) fn write_ply_vertices(vertices: &PlyVertices, ascii: bool) -> Vec<u8> {
+    write_ply(vertices, None, ascii)
+}
+
+impl TriangleMesh {
+    /// PLY with float x, y, z vertices and `list uchar int vertex_indices` faces,
+    /// ASCII or binary little endian. Vertices are narrowed to f32, as viewers
+    /// expect; `int` indices are the same bytes as u32 below 2^31 vertices.
+    pub fn to_ply(&self, ascii: bool) -> Vec<u8> {
+        let points: Vec<[f32; 3]> = self.vertices.iter().map(|v| v.map(|c| c as f32)).collect();
+        let vertices = PlyVertices {
+            comment: "written by shroud",
+            points: &points,
+            properties: &[],
+        };
+        write_ply(&vertices, Some(&self.triangles), ascii)
+    }
+}
+
+/// A PLY file of `vertices` and, when `faces` is given, a `face` element of
+/// three-index `list uchar int vertex_indices` records after them.
+fn write_ply(vertices: &PlyVertices, faces: Option<&[[u32; 3]]>, ascii: bool) -> Vec<u8> {
     let properties: Vec<PlyProperty> = vertices
         .properties
         .iter()
         .filter(|p| p.values.len() == vertices.points.len())
         .copied()
         .collect();
-    let mut out = header(vertices, &properties, ascii).into_bytes();
+    let face_count = faces.map(<[_]>::len);
+    let mut out = header(vertices, &properties, face_count, ascii).into_bytes();
     let columns: Vec<Column> = properties.iter().map(|p| p.values).collect();
     push_records(&mut out, vertices.points, &columns, ascii);
+    push_faces(&mut out, faces.unwrap_or_default(), ascii);
     out
 }
 
-fn header(vertices: &PlyVertices, properties: &[PlyProperty], ascii: bool) -> String {
+/// One record per face: `3 a b c` lines, or a count byte and little-endian indices.
+fn push_faces(out: &mut Vec<u8>, faces: &[[u32; 3]], ascii: bool) {
+    if !ascii {
+        out.reserve(faces.len() * 13);
+    }
+    for &[a, b, c] in faces {
+        if ascii {
+            out.extend_from_slice(format!("3 {a} {b} {c}\n").as_bytes());
+        } else {
+            out.push(3);
+            [a, b, c]
+                .iter()
+                .for_each(|i| out.extend_from_slice(&i.to_le_bytes()));
+        }
+    }
+}
+
+/// The header of `vertices` with `properties` after x, y, z and, when `faces`
+/// holds their count, the `face` element after the vertices.
+fn header(
+    vertices: &PlyVertices,
+    properties: &[PlyProperty],
+    faces: Option<usize>,
+    ascii: bool,
+) -> String {
     let encoding = if ascii {
         "ascii"
     } else {
@@ -84,6 +133,11 @@ fn header(vertices: &PlyVertices, properties: &[PlyProperty], ascii: bool) -> St
             "property {} {}\n",
             property.type_name(),
             property.name
+        ));
+    }
+    if let Some(count) = faces {
+        header.push_str(&format!(
+            "element face {count}\nproperty list uchar int vertex_indices\n"
         ));
     }
     header.push_str("end_header\n");
@@ -155,5 +209,40 @@ mod tests {
         }
         let short = write_ply_points(&POINTS, Some(&INTENSITY[..1]), true);
         assert_eq!(short, write_ply_points(&POINTS, None, true));
+    }
+
+    /// The bytes `to_ply` wrote before it moved beside the cloud writers, into
+    /// `format::ply::write`: meshes saved earlier and by this version are the same.
+    #[test]
+    fn ply_bytes_are_unchanged() {
+        let mesh = TriangleMesh {
+            vertices: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.1, -2.5],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.25],
+            ],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+        };
+        let header = |encoding: &str| {
+            format!(
+                "ply\nformat {encoding} 1.0\ncomment written by shroud\nelement vertex 4\n\
+                 property float x\nproperty float y\nproperty float z\nelement face 2\n\
+                 property list uchar int vertex_indices\nend_header\n"
+            )
+        };
+        let ascii = header("ascii") + "0 0 0\n1 0.1 -2.5\n1 1 0\n0 1 0.25\n3 0 1 2\n3 0 2 3\n";
+        assert_eq!(String::from_utf8(mesh.to_ply(true)).unwrap(), ascii);
+        let body = "0000000000000000000000000000803fcdcccc3d000020c00000803f0000803f\
+                    00000000000000000000803f0000803e03000000000100000002000000030000\
+                    00000200000003000000";
+        let mut binary = header("binary_little_endian").into_bytes();
+        binary.extend(hex(body));
+        assert_eq!(mesh.to_ply(false), binary);
+        let empty = TriangleMesh::default().to_ply(true);
+        let empty_header = header("ascii")
+            .replace("vertex 4", "vertex 0")
+            .replace("face 2", "face 0");
+        assert_eq!(String::from_utf8(empty).unwrap(), empty_header);
     }
 }
