@@ -34,7 +34,26 @@ fn shroud_beside_this_binary() -> Result<PathBuf> {
             shroud.display()
         );
     }
+    say_which_binary(&shroud);
     Ok(shroud)
+}
+
+/// Names the binary the nodes run and when it was built: a `shroud` older
+/// than the node code being measured gives old figures, and cargo does not
+/// rebuild it for `cargo run -p shroud-bench`.
+fn say_which_binary(shroud: &std::path::Path) {
+    let age = std::fs::metadata(shroud)
+        .and_then(|m| m.modified())
+        .ok()
+        .and_then(|built| built.elapsed().ok());
+    match age {
+        Some(age) => eprintln!(
+            "nodes run from {} (built {:.0} minutes ago; rebuild it with `cargo build --release -p shroud` after changing node code)",
+            shroud.display(),
+            age.as_secs_f64() / 60.0
+        ),
+        None => eprintln!("nodes run from {}", shroud.display()),
+    }
 }
 
 impl BenchGraph {

@@ -1,5 +1,5 @@
 // Keeps N dashboard pages open in one headless Chromium until stdin closes or SIGTERM: the
-// browsers of `shroud bench consumers --browsers`. Prints "open N" on stdout once every page
+// browsers of `shroud-bench consumers --browsers`. Prints "open N" on stdout once every page
 // has its hello, then, at exit, one JSON line on stderr with the frames each page counted.
 //
 //   node tests/browser/open_pages.mjs --url http://127.0.0.1:8080 --count 3

@@ -369,11 +369,11 @@ fn parent(
         let Some(arrival) = input.recv_timeout(Duration::from_millis(100)) else {
             continue;
         };
+        // Validated as a whole message (intensity and channels too), as
+        // `CloudMessage::from_bytes` does.
         let decoded = input.decoded(&arrival, |cloud| {
-            let mut points = Vec::new();
-            cloud
-                .read_points(&mut points)
-                .map(|()| (points, cloud.pipeline_ns))
+            let cloud = cloud.to_message()?;
+            Ok::<_, shroud_msg::MessageError>((cloud.point_array()?, cloud.pipeline_ns))
         });
         let (points, pipeline_ns) = match decoded {
             Some(Ok(decoded)) => decoded,

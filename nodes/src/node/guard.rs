@@ -18,7 +18,7 @@ use shroud_msg::{
 use shroud_surrogate::SurrogateWire;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 #[derive(Debug, Clone, Args)]
 pub struct GuardArgs {
@@ -235,7 +235,6 @@ impl OnMessage<JointStateMessage> for Checker {
     /// A verdict when the joint state can be checked, else a stop that says
     /// why (and the message is counted as malformed).
     fn on_message(&self, arrival: &Arrival, msg: JointStateMessage) {
-        let start = Instant::now();
         let id = (msg.stamp_ns, msg.sequence);
         let decision = match self.decide(&msg) {
             Ok(d) => d,
@@ -244,15 +243,14 @@ impl OnMessage<JointStateMessage> for Checker {
                 Decision::refused(format!("joint state not checked: {e:#}"))
             }
         };
-        self.publish(&decision, id, start);
+        self.publish(&decision, id, arrival);
     }
 
     fn on_malformed(&self, metrics: &NodeMetrics, arrival: &Arrival, error: &MessageError) {
-        let start = Instant::now();
         metrics.drop_malformed(&arrival.key, error);
         let refused = Decision::refused(format!("undecodable joint state: {error}"));
         // It answers no joint state: no sequence a consumer sent.
-        self.publish(&refused, (0, u64::MAX), start);
+        self.publish(&refused, (0, u64::MAX), arrival);
     }
 }
 
@@ -276,8 +274,10 @@ impl Checker {
         Ok(lock(&self.guard).decide(&pose.shapes, monotonic_ns())?)
     }
 
-    fn publish(&self, decision: &Decision, joints: (u64, u64), start: Instant) {
-        let check_ns = start.elapsed().as_nanos() as u64;
+    /// The check's time counts from the joint state's arrival (its decoding
+    /// included).
+    fn publish(&self, decision: &Decision, joints: (u64, u64), arrival: &Arrival) {
+        let check_ns = monotonic_ns().saturating_sub(arrival.received_ns);
         let out: CollisionMessage =
             lock(&self.guard).message(decision, &self.arm_name, joints, check_ns);
         let m = &self.metrics;

@@ -10,6 +10,7 @@ use anyhow::Result;
 use shroud_graph::backlog::DropOldest;
 use shroud_graph::metrics::names as metric;
 use shroud_msg::Message;
+use std::cell::Cell;
 use std::marker::PhantomData;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -25,6 +26,9 @@ pub struct Input<M: Message> {
     /// The node's stop flag.
     stop: Arc<AtomicBool>,
     mailbox: Arc<WaitQueue<DropOldest<Arrival>>>,
+    /// The queue's drops already added to the node's `dropped_backlog`
+    /// (added, not set: a node may have several inputs).
+    dropped_counted: Cell<u64>,
     key: String,
     _subscriber: zenoh::pubsub::Subscriber<()>,
     _message: PhantomData<fn() -> M>,
@@ -54,6 +58,7 @@ impl<M: Message> Input<M> {
             metrics,
             stop,
             mailbox,
+            dropped_counted: Cell::new(0),
             key,
             _subscriber: subscriber,
             _message: PhantomData,
@@ -69,15 +74,13 @@ impl<M: Message> Input<M> {
     /// or once the node stops. Counts it (`received`) and refreshes the
     /// backlog count.
     pub fn recv_timeout(&self, timeout: Duration) -> Option<Arrival> {
-        let metrics = &self.metrics;
-        let dropped = self.mailbox.read(|backlog| backlog.dropped());
-        metrics.set_counter(metric::DROPPED_BACKLOG, dropped);
+        self.count_backlog();
         if self.stopping() {
             return None;
         }
         let mut arrival = self.mailbox.take(timeout)?;
         arrival.taken_ns = monotonic_ns();
-        metrics.add(metric::RECEIVED, 1);
+        self.metrics.add(metric::RECEIVED, 1);
         Some(arrival)
     }
 
@@ -99,6 +102,14 @@ impl<M: Message> Input<M> {
         used
     }
 
+    /// Adds the drops since the last call to the node's `dropped_backlog`.
+    fn count_backlog(&self) {
+        let dropped = self.mailbox.read(|backlog| backlog.dropped());
+        let new = dropped.saturating_sub(self.dropped_counted.replace(dropped));
+        // Added even when 0, so that the count is in the status from the start.
+        self.metrics.add(metric::DROPPED_BACKLOG, new);
+    }
+
     fn stopping(&self) -> bool {
         self.stop.load(Ordering::Relaxed)
     }
@@ -118,5 +129,6 @@ impl<M: Message> Drop for Input<M> {
         // Wakes a worker still waiting and refuses what zenoh delivers until
         // the subscriber is undeclared.
         self.mailbox.close();
+        self.count_backlog();
     }
 }

@@ -154,3 +154,30 @@ fn an_output_counts_what_it_cannot_encode() {
     assert_eq!(ctx.metrics.counter(metric::PUBLISH_ERRORS), 1);
     assert_eq!(ctx.metrics.counter(metric::PUBLISHED), 0);
 }
+
+#[test]
+fn inputs_add_their_drops_to_the_one_backlog_count() {
+    let ctx = context();
+    let arrived = Arc::new(AtomicU64::new(0));
+    let _witness = {
+        let arrived = arrived.clone();
+        ctx.listen_raw("shroud/runtime_test/joints/*", move |_| {
+            arrived.fetch_add(1, Ordering::Relaxed);
+        })
+        .unwrap()
+    };
+    let inputs = ["e", "f"].map(|name| ctx.subscribe::<JointStateMessage>(name, 1).unwrap());
+    for name in ["e", "f"] {
+        let output = ctx.output::<JointStateMessage>(name).unwrap();
+        (0..3).for_each(|sequence| assert!(output.put(&joints(sequence))));
+    }
+    eventually("every sample", || arrived.load(Ordering::Relaxed) == 6);
+    // Each queue of one kept its newest and dropped two; the second input's
+    // count adds to the first's instead of replacing it.
+    for input in &inputs {
+        assert!(input.recv_timeout(Duration::from_secs(5)).is_some());
+    }
+    drop(inputs);
+    assert_eq!(ctx.metrics.counter(metric::DROPPED_BACKLOG), 4);
+    assert_eq!(ctx.metrics.counter(metric::RECEIVED), 2);
+}
