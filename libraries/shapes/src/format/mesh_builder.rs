@@ -21,11 +21,6 @@ impl MeshBuilder {
         }
     }
 
-    /// Number of vertices added so far.
-    pub(super) fn vertex_count(&self) -> usize {
-        self.mesh.vertices.len()
-    }
-
     /// Adds a vertex; `location` names it in an error.
     pub(super) fn vertex(
         &mut self,

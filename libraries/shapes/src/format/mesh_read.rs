@@ -6,7 +6,7 @@
 use super::mesh::TriangleMesh;
 use super::mesh_builder::MeshBuilder;
 use super::ply::{has_ply_magic, parse_ply_mesh};
-use super::FormatError;
+use super::{parse_obj_polygons, Corners, FormatError, ObjDefect};
 
 /// Reads a triangle mesh from the bytes of an OBJ or PLY file: a file that starts
 /// with the PLY magic line is PLY, anything else must be OBJ text (UTF-8).
@@ -29,112 +29,91 @@ pub fn parse_triangle_mesh(bytes: &[u8]) -> Result<TriangleMesh, FormatError> {
     }
 }
 
-/// Wavefront OBJ: `v` and `f` statements, everything else ignored.
+/// Wavefront OBJ: `v` and `f` statements read by the shared parser
+/// ([`super::obj`]), polygons of at least 3 vertices fan-triangulated.
 fn parse_obj(bytes: &[u8]) -> Result<TriangleMesh, FormatError> {
-    let text = std::str::from_utf8(bytes).map_err(|e| FormatError::ObjNotUtf8 {
-        line: 1 + bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count(),
-    })?;
-    // A `v` line takes at least 6 bytes and a face line at least 6: bounded by the input.
+    let read = parse_obj_polygons(bytes, Corners::AtLeast(3)).map_err(obj_error)?;
+    // The counts are those of the file's lines: bounded by the input.
     let mut builder = MeshBuilder::with_capacity(0, 0);
-    // Positive references to vertices defined later in the file, checked at the end.
-    let mut forward: Vec<(usize, i64)> = Vec::new();
-    let mut polygon: Vec<u32> = Vec::new();
-    for (number, raw) in text.lines().enumerate() {
-        let line = number + 1;
-        let content = raw.split('#').next().unwrap_or_default();
-        let mut tokens = content.split_ascii_whitespace();
-        match tokens.next() {
-            Some("v") => {
-                let xyz = obj_vertex(tokens, line)?;
-                builder.vertex(xyz, || format!("OBJ line {line}"))?;
-            }
-            Some("f") => {
-                polygon.clear();
-                let defined = builder.vertex_count();
-                for token in tokens {
-                    let index = obj_reference(token, line, defined)?;
-                    if index as usize >= defined {
-                        forward.push((line, i64::from(index) + 1));
-                    }
-                    polygon.push(index);
-                }
-                builder.face(&polygon, || format!("OBJ line {line}"))?;
-            }
-            _ => {}
-        }
+    for (k, &xyz) in read.vertices.iter().enumerate() {
+        builder.vertex(xyz, || format!("OBJ vertex {}", k + 1))?;
     }
-    let vertices = builder.vertex_count();
-    if let Some(&(line, index)) = forward.iter().find(|(_, i)| *i as usize > vertices) {
-        return Err(FormatError::MeshIndexOutOfRange {
-            location: format!("OBJ line {line}"),
-            index,
-            vertices,
-        });
+    for (line, polygon) in read.polygons() {
+        builder.face(polygon, || format!("OBJ line {line}"))?;
     }
     builder.finish()
 }
 
-/// The x, y, z of a `v` statement (a fourth `w` or three colour values may follow
-/// and are ignored).
-fn obj_vertex<'a>(
-    tokens: impl Iterator<Item = &'a str>,
-    line: usize,
-) -> Result<[f64; 3], FormatError> {
-    let mut xyz = [0.0; 3];
-    let mut count = 0;
-    for token in tokens {
-        let value = token.parse::<f64>().map_err(|_| FormatError::ObjBadLine {
+/// The [`FormatError`] of an OBJ defect.
+fn obj_error(defect: ObjDefect) -> FormatError {
+    let bad = |line: usize, reason: String| FormatError::ObjBadLine { line, reason };
+    let at = |line: usize| format!("OBJ line {line}");
+    match defect {
+        ObjDefect::NotUtf8 { line } => FormatError::ObjNotUtf8 { line },
+        ObjDefect::NotAsciiSpace { line, space } => bad(
             line,
-            reason: format!("vertex value '{token}' is not a number"),
-        })?;
-        if let Some(slot) = xyz.get_mut(count) {
-            *slot = value;
+            format!(
+                "whitespace U+{:04X} is not an OBJ separator (use ASCII spaces or tabs)",
+                u32::from(space)
+            ),
+        ),
+        ObjDefect::VertexNotNumber { line, token } => {
+            bad(line, format!("vertex value '{token}' is not a number"))
         }
-        count += 1;
-    }
-    if count < 3 {
-        return Err(FormatError::ObjBadLine {
+        ObjDefect::VertexTooFewValues { line, count } => bad(
             line,
-            reason: format!("a vertex needs x, y and z, this one has {count} values"),
-        });
+            format!("a vertex needs x, y and z, this one has {count} values"),
+        ),
+        ObjDefect::VertexNotFinite { line, axis, value } => FormatError::MeshNonFiniteVertex {
+            location: at(line),
+            axis,
+            value,
+        },
+        ObjDefect::TooManyVertices { count } => FormatError::MeshTooManyVertices {
+            count,
+            max: u32::MAX as usize,
+        },
+        ObjDefect::ReferenceNotIndex { line, token } => {
+            bad(line, format!("face reference '{token}' is not a vertex index"))
+        }
+        ObjDefect::ReferenceZero { line, .. } => bad(
+            line,
+            "vertex index 0 is invalid: OBJ indices start at 1".into(),
+        ),
+        ObjDefect::ReferenceBeforeFirst {
+            line,
+            index,
+            defined,
+        } => bad(
+            line,
+            format!(
+                "relative vertex index {index} reaches before the first vertex ({defined} defined so far)"
+            ),
+        ),
+        ObjDefect::ReferenceTooLarge {
+            line,
+            index,
+            defined,
+            ..
+        } => FormatError::MeshIndexOutOfRange {
+            location: at(line),
+            index,
+            vertices: defined,
+        },
+        ObjDefect::FaceCorners { line, count } => FormatError::MeshDegenerateFace {
+            location: at(line),
+            count,
+        },
+        ObjDefect::ReferenceOutOfRange {
+            line,
+            index,
+            vertices,
+        } => FormatError::MeshIndexOutOfRange {
+            location: at(line),
+            index,
+            vertices,
+        },
     }
-    Ok(xyz)
-}
-
-/// The 0-based vertex index of a face reference `a`, `a/t`, `a//n` or `a/t/n`.
-/// Negative references count back from the last of the `defined` vertices;
-/// positive ones may point past them (checked when the file is read).
-fn obj_reference(token: &str, line: usize, defined: usize) -> Result<u32, FormatError> {
-    let bad = |reason: String| FormatError::ObjBadLine { line, reason };
-    let vertex = token.split('/').next().unwrap_or_default();
-    let index: i64 = vertex
-        .parse()
-        .map_err(|_| bad(format!("face reference '{token}' is not a vertex index")))?;
-    let resolved = match index {
-        0 => {
-            return Err(bad(
-                "vertex index 0 is invalid: OBJ indices start at 1".into()
-            ))
-        }
-        i if i < 0 => {
-            let back = i.unsigned_abs();
-            if back > defined as u64 {
-                return Err(bad(format!(
-                    "relative vertex index {i} reaches before the first vertex ({defined} defined so far)"
-                )));
-            }
-            defined as u64 - back
-        }
-        i => i as u64 - 1,
-    };
-    u32::try_from(resolved).map_err(|_| FormatError::MeshIndexOutOfRange {
-        location: format!("OBJ line {line}"),
-        index,
-        vertices: defined,
-    })
 }
 
 #[cfg(test)]
@@ -266,6 +245,24 @@ mod tests {
         assert!(err(&format!("{tri}f 1 2 99999999999\n"))
             .to_string()
             .contains("99999999999"));
+    }
+
+    #[test]
+    fn obj_reports_the_first_defect_in_file_order() {
+        // A defect before an invalid UTF-8 line is the one reported.
+        assert!(matches!(
+            parse_triangle_mesh(b"v 0 0\n\xff\n").unwrap_err(),
+            FormatError::ObjBadLine { line: 1, .. }
+        ));
+        // `v` and `f` lines are separated by ASCII whitespace only.
+        for text in ["v\u{a0}0 0 0\n", "v 0\u{b}0 0\n"] {
+            let message = err(text).to_string();
+            assert!(message.contains("is not an OBJ separator"), "{message}");
+        }
+        assert!(
+            parse_triangle_mesh("g a\u{a0}b\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".as_bytes())
+                .is_ok()
+        );
     }
 
     /// A PLY header with float vertices and the given face list property.

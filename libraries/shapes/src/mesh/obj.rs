@@ -1,5 +1,7 @@
 //! Wavefront OBJ quad meshes as bytes: `v x y z` and `f a b c d` lines (with optional
-//! `/vt/vn` parts and negative indices), other statements ignored.
+//! `/vt/vn` parts and negative indices), other statements ignored. The file is
+//! read by the parser shared with the triangle-mesh reader (`crate::format`),
+//! whose rules apply here too; this reader requires every face to be a quad.
 
 use std::fmt::Write as _;
 
@@ -7,14 +9,19 @@ use thiserror::Error;
 
 use super::error::MeshError;
 use super::quad_mesh::QuadMesh;
+use crate::format::{parse_obj_polygons, Corners, ObjDefect};
 
 /// Why bytes are not an OBJ quad mesh. Line numbers start at 1.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum ObjError {
     #[error("line {line}: not valid UTF-8")]
     NotUtf8 { line: usize },
+    #[error("line {line}: whitespace U+{:04X} is not an OBJ separator (use ASCII spaces or tabs)", u32::from(*space))]
+    NotAsciiSpace { line: usize, space: char },
     #[error("line {line}: a vertex needs three numeric coordinates")]
     BadVertex { line: usize },
+    #[error("line {line}: coordinate {axis} is {value}, must be finite")]
+    NonFiniteVertex { line: usize, axis: char, value: f64 },
     #[error("line {line}: face has {corners} vertices but only quads are supported")]
     NotQuad { line: usize, corners: usize },
     #[error("line {line}: bad vertex index {token:?}")]
@@ -29,77 +36,59 @@ pub enum ObjError {
     Mesh(#[from] MeshError),
 }
 
+impl From<ObjDefect> for ObjError {
+    fn from(defect: ObjDefect) -> Self {
+        match defect {
+            ObjDefect::NotUtf8 { line } => ObjError::NotUtf8 { line },
+            ObjDefect::NotAsciiSpace { line, space } => ObjError::NotAsciiSpace { line, space },
+            ObjDefect::VertexNotNumber { line, .. }
+            | ObjDefect::VertexTooFewValues { line, .. } => ObjError::BadVertex { line },
+            ObjDefect::VertexNotFinite { line, axis, value } => {
+                ObjError::NonFiniteVertex { line, axis, value }
+            }
+            ObjDefect::TooManyVertices { count } => {
+                ObjError::Mesh(MeshError::TooManyVertices { count })
+            }
+            ObjDefect::ReferenceNotIndex { line, token }
+            | ObjDefect::ReferenceZero { line, token }
+            | ObjDefect::ReferenceTooLarge { line, token, .. } => {
+                ObjError::BadIndex { line, token }
+            }
+            ObjDefect::ReferenceBeforeFirst {
+                line,
+                index,
+                defined,
+            } => ObjError::IndexOutOfRange {
+                line,
+                index,
+                vertex_count: defined,
+            },
+            ObjDefect::FaceCorners { line, count } => ObjError::NotQuad {
+                line,
+                corners: count,
+            },
+            ObjDefect::ReferenceOutOfRange {
+                line,
+                index,
+                vertices,
+            } => ObjError::IndexOutOfRange {
+                line,
+                index,
+                vertex_count: vertices,
+            },
+        }
+    }
+}
+
 /// Parses an OBJ quad mesh. Positive indices may refer to any vertex of the file,
 /// negative ones count back from the last vertex defined before the face.
 pub fn parse_obj(bytes: &[u8]) -> Result<QuadMesh, ObjError> {
-    let mut vertices: Vec<[f64; 3]> = Vec::new();
-    let mut faces: Vec<[u32; 4]> = Vec::new();
-    let mut pending: Vec<(usize, i64)> = Vec::new(); // (line, positive index) to check
-    for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
-        let line = i + 1;
-        let text = std::str::from_utf8(raw).map_err(|_| ObjError::NotUtf8 { line })?;
-        let text = text.split('#').next().unwrap_or("").trim();
-        let mut tokens = text.split_whitespace();
-        match tokens.next() {
-            Some("v") => {
-                let mut p = [0.0; 3];
-                for c in &mut p {
-                    *c = tokens
-                        .next()
-                        .and_then(|t| t.parse::<f64>().ok())
-                        .ok_or(ObjError::BadVertex { line })?;
-                }
-                vertices.push(p);
-            }
-            Some("f") => {
-                let corners: Vec<&str> = tokens.collect();
-                if corners.len() != 4 {
-                    return Err(ObjError::NotQuad {
-                        line,
-                        corners: corners.len(),
-                    });
-                }
-                let mut face = [0u32; 4];
-                for (slot, token) in face.iter_mut().zip(&corners) {
-                    let index_text = token.split('/').next().unwrap_or("");
-                    let bad = || ObjError::BadIndex {
-                        line,
-                        token: (*token).to_string(),
-                    };
-                    let index: i64 = index_text.parse().map_err(|_| bad())?;
-                    let resolved = if index > 0 {
-                        pending.push((line, index));
-                        index - 1
-                    } else if index < 0 {
-                        let r = vertices.len() as i64 + index;
-                        if r < 0 {
-                            return Err(ObjError::IndexOutOfRange {
-                                line,
-                                index,
-                                vertex_count: vertices.len(),
-                            });
-                        }
-                        r
-                    } else {
-                        return Err(bad());
-                    };
-                    *slot = u32::try_from(resolved).map_err(|_| bad())?;
-                }
-                faces.push(face);
-            }
-            _ => {}
-        }
-    }
-    for (line, index) in pending {
-        if index as u64 > vertices.len() as u64 {
-            return Err(ObjError::IndexOutOfRange {
-                line,
-                index,
-                vertex_count: vertices.len(),
-            });
-        }
-    }
-    Ok(QuadMesh::new(vertices, faces)?)
+    let read = parse_obj_polygons(bytes, Corners::Exactly(4))?;
+    let faces = read
+        .polygons()
+        .map(|(_, quad)| [quad[0], quad[1], quad[2], quad[3]])
+        .collect();
+    Ok(QuadMesh::new(read.vertices, faces)?)
 }
 
 /// Writes `mesh` as OBJ text (`v` lines with round-trip exact coordinates, then

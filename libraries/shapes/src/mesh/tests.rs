@@ -369,6 +369,40 @@ fn mesh_obj_rejects_bad_input() {
     );
 }
 
+/// The rules of the OBJ parser shared with the triangle-mesh reader.
+#[test]
+fn mesh_obj_follows_the_shared_parser_rules() {
+    let quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    // A `w` after x, y, z is legal; any other trailing word is not.
+    assert!(parse_obj(quad.replace("v 1 0 0", "v 1 0 0 1").as_bytes()).is_ok());
+    assert_eq!(
+        parse_obj(quad.replace("v 1 0 0", "v 1 0 0 w").as_bytes()).unwrap_err(),
+        ObjError::BadVertex { line: 2 }
+    );
+    // A non-finite coordinate is refused on its line, before later defects.
+    assert!(matches!(
+        parse_obj(format!("v 0 nan 0\n{quad}f 1 2 3\n").as_bytes()).unwrap_err(),
+        ObjError::NonFiniteVertex {
+            line: 1,
+            axis: 'y',
+            ..
+        }
+    ));
+    // `v` and `f` lines are separated by ASCII whitespace only.
+    assert_eq!(
+        parse_obj(quad.replace("f 1 2", "f 1\u{a0}2").as_bytes()).unwrap_err(),
+        ObjError::NotAsciiSpace {
+            line: 5,
+            space: '\u{a0}'
+        }
+    );
+    // Every reference of a face is read before its corners are counted.
+    assert!(matches!(
+        parse_obj(b"v 0 0 0\nf 1 2 x\n").unwrap_err(),
+        ObjError::BadIndex { line: 2, .. }
+    ));
+}
+
 #[test]
 fn mesh_catmull_clark_point_rules() {
     let cube = cube();
