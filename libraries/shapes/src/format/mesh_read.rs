@@ -11,7 +11,7 @@ use super::{parse_obj_polygons, Corners, FormatError, ObjDefect};
 /// Reads a triangle mesh from the bytes of an OBJ or PLY file: a file that starts
 /// with the PLY magic line is PLY, anything else must be OBJ text (UTF-8).
 ///
-/// * OBJ: `v x y z [w | r g b]` and `f a b c ...` lines; face references may be
+/// * OBJ: `v x y z [more numbers, ignored]` and `f a b c ...` lines; face references may be
 ///   `a`, `a/t`, `a//n` or `a/t/n`, 1-based or negative (relative to the last
 ///   vertex defined so far). Comments (`#`) and every other statement (`vt`, `vn`,
 ///   `g`, `o`, `s`, `usemtl`, `l`, ...) are ignored.

@@ -5,6 +5,7 @@
 //!
 //! The rules, the same for both readers:
 //!
+//! * A leading UTF-8 byte-order mark is skipped.
 //! * Lines end at `\n` (a `\r` before it is whitespace); each line must be UTF-8;
 //!   `#` starts a comment up to the end of the line.
 //! * Tokens are separated by ASCII whitespace. A `v` or `f` line separated by
@@ -14,7 +15,8 @@
 //! * `v x y z [more numbers]`: every value must be a number (a `w` or an `r g b`
 //!   colour may follow x, y, z and is ignored), x, y and z finite.
 //! * `f a b c ...`: references `a`, `a/t`, `a//n` or `a/t/n`, 1-based or negative
-//!   (counting back from the last vertex defined so far). Every reference of a
+//!   (counting back from the last vertex defined so far); only the vertex index
+//!   before the first `/` is read, the rest of a reference is ignored. Every reference of a
 //!   face is read before its number of corners is checked. Positive references
 //!   may point at vertices defined later; they are checked at the end.
 //! * The first defect in file order is reported; end-of-file checks (forward
@@ -132,6 +134,9 @@ pub(crate) enum ObjDefect {
 /// Parses the `v` and `f` statements of OBJ bytes; every face must have
 /// `corners` corners.
 pub(crate) fn parse_obj_polygons(bytes: &[u8], corners: Corners) -> Result<ObjPolygons, ObjDefect> {
+    // A UTF-8 byte-order mark is not part of the first statement (it would
+    // hide a first `v` and shift every vertex after it).
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     let mut out = ObjPolygons::default();
     // Positive references past the vertices defined so far: (line, 1-based index).
     let mut forward: Vec<(usize, i64)> = Vec::new();
@@ -259,6 +264,14 @@ fn reference(token: &str, line: usize, defined: usize) -> Result<u32, ObjDefect>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_byte_order_mark_hides_no_vertex() {
+        let text = b"\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let read = parse_obj_polygons(text, Corners::AtLeast(3)).unwrap();
+        assert_eq!(read.vertices.len(), 3);
+        assert_eq!(read.polygons().count(), 1);
+    }
 
     #[test]
     fn polygons_references_and_defect_order() {

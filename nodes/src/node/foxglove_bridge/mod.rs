@@ -38,7 +38,7 @@ pub struct FoxgloveArgs {
 /// Where `--listen` serves unless told otherwise (Foxglove's usual port).
 const DEFAULT_LISTEN: &str = "127.0.0.1:8765";
 
-/// `--points-budget` unless told otherwise (as `shroud record`'s).
+/// `--point-budget` unless told otherwise (as `shroud record`'s `--points-budget`).
 const DEFAULT_POINT_BUDGET: usize = 50_000;
 
 pub fn run(mut args: FoxgloveArgs) -> Result<()> {
