@@ -16,9 +16,10 @@ pub struct ViewerArgs {
     #[arg(long, visible_alias = "points-budget")]
     pub point_budget: Option<usize>,
     /// Most updates a second of each cloud, surrogate and smooth fit (the
-    /// dashboard) or cloud, surrogate and arm (the Foxglove bridge) sent to
-    /// viewers; the latest waits. What a viewer needs, and what keeps a 30 Hz
-    /// 300K-point stream from costing the robot's cores.
+    /// dashboard; arms, verdicts and nodes are not paced) or cloud, surrogate
+    /// and arm (the Foxglove bridge; its clients' queues count messages, not
+    /// bytes) sent to viewers; the latest waits. What a viewer needs, and what
+    /// keeps a 30 Hz 300K-point stream from costing the robot's cores.
     #[arg(long, default_value_t = 10.0)]
     pub max_rate: f64,
     /// An arm file (as the guard's) whose arm is drawn at its joint states. Repeatable.

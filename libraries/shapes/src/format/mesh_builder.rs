@@ -21,6 +21,39 @@ impl MeshBuilder {
         }
     }
 
+    /// A builder holding `vertices` (moved, not copied: a reader that has
+    /// them all already does not hold them twice), each checked as
+    /// [`Self::vertex`] checks it; `location` names the k-th (0-based) in an error.
+    pub(super) fn from_vertices(
+        vertices: Vec<[f64; 3]>,
+        location: impl FnOnce(usize) -> String,
+    ) -> Result<Self, FormatError> {
+        if vertices.len() > MAX_VERTICES {
+            return Err(FormatError::MeshTooManyVertices {
+                count: MAX_VERTICES + 1,
+                max: MAX_VERTICES,
+            });
+        }
+        let non_finite = vertices.iter().enumerate().find_map(|(i, xyz)| {
+            let k = xyz.iter().position(|c| !c.is_finite())?;
+            Some((i, k, xyz[k]))
+        });
+        if let Some((i, k, value)) = non_finite {
+            return Err(FormatError::MeshNonFiniteVertex {
+                location: location(i),
+                axis: ['x', 'y', 'z'][k],
+                value,
+            });
+        }
+        let triangles = Vec::new();
+        Ok(Self {
+            mesh: TriangleMesh {
+                vertices,
+                triangles,
+            },
+        })
+    }
+
     /// Adds a vertex; `location` names it in an error.
     pub(super) fn vertex(
         &mut self,
@@ -94,4 +127,28 @@ const MAX_VERTICES: usize = u32::MAX as usize;
 
 fn degenerate(location: String, count: usize) -> FormatError {
     FormatError::MeshDegenerateFace { location, count }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn moved_vertices_are_checked_as_added_ones() {
+        let vertices = vec![[0.0, 0.0, 0.0], [1.0, f64::NAN, 0.0]];
+        let err = MeshBuilder::from_vertices(vertices, |k| format!("vertex {k}")).unwrap_err();
+        assert!(
+            matches!(
+                &err,
+                FormatError::MeshNonFiniteVertex { location, axis: 'y', value }
+                    if location == "vertex 1" && value.is_nan()
+            ),
+            "{err:?}"
+        );
+        let vertices = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let mut builder = MeshBuilder::from_vertices(vertices, |k| k.to_string()).unwrap();
+        builder.face(&[0, 1, 2], String::new).unwrap();
+        let mesh = builder.finish().unwrap();
+        assert_eq!((mesh.vertices.len(), mesh.triangles), (3, vec![[0, 1, 2]]));
+    }
 }

@@ -32,12 +32,9 @@ pub fn parse_triangle_mesh(bytes: &[u8]) -> Result<TriangleMesh, FormatError> {
 /// Wavefront OBJ: `v` and `f` statements read by the shared parser
 /// ([`super::obj`]), polygons of at least 3 vertices fan-triangulated.
 fn parse_obj(bytes: &[u8]) -> Result<TriangleMesh, FormatError> {
-    let read = parse_obj_polygons(bytes, Corners::AtLeast(3)).map_err(obj_error)?;
-    // The counts are those of the file's lines: bounded by the input.
-    let mut builder = MeshBuilder::with_capacity(0, 0);
-    for (k, &xyz) in read.vertices.iter().enumerate() {
-        builder.vertex(xyz, || format!("OBJ vertex {}", k + 1))?;
-    }
+    let mut read = parse_obj_polygons(bytes, Corners::AtLeast(3)).map_err(obj_error)?;
+    let vertices = std::mem::take(&mut read.vertices);
+    let mut builder = MeshBuilder::from_vertices(vertices, |k| format!("OBJ vertex {}", k + 1))?;
     for (line, polygon) in read.polygons() {
         builder.face(polygon, || format!("OBJ line {line}"))?;
     }
