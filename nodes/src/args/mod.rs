@@ -20,5 +20,5 @@ pub use emulator::EmulatorArgs;
 pub use mount::{CloudArgs, MountArgs, MountAxis};
 pub use smooth::{DomainKind, SmoothDomainArgs};
 pub use surrogate::SurrogateShapeArgs;
-pub use viewer::{ViewerArgs, ViewerSettings};
+pub use viewer::{ViewLimits, ViewerArgs, ViewerSettings};
 pub use web_listen::take_web_listen;

@@ -51,34 +51,59 @@ impl ViewerArgs {
     /// given) and reads the arm files.
     pub fn settings(&self, default_point_budget: usize) -> Result<ViewerSettings> {
         let point_budget = self.point_budget.unwrap_or(default_point_budget);
+        let view = ViewLimits {
+            point_budget: ("--point-budget", point_budget),
+            rate: ("--max-rate", self.max_rate, "updates"),
+            verdict_timeout: self.verdict_timeout,
+            arm_files: &self.arm_files,
+        };
+        let (pace_ns, arms, verdict_timeout_ns) = view.check()?;
+        Ok(ViewerSettings {
+            point_budget,
+            pace_ns,
+            arms,
+            verdict_timeout_ns,
+            blend_stream: self.blend_stream.clone(),
+        })
+    }
+}
+
+/// What every view of the graph is limited by, as given on a command line
+/// (the viewers' and `shroud record --foxglove`'s flags name them apart).
+pub struct ViewLimits<'a> {
+    /// (flag, points).
+    pub point_budget: (&'static str, usize),
+    /// (flag, per second, what is paced).
+    pub rate: (&'static str, f64, &'static str),
+    pub verdict_timeout: f64,
+    pub arm_files: &'a [PathBuf],
+}
+
+impl ViewLimits<'_> {
+    /// Checks the limits and reads the arm files: (least nanoseconds between
+    /// two updates of a stream, the arms, the verdict timeout in nanoseconds).
+    pub fn check(&self) -> Result<(u64, Vec<ArmModel>, u64)> {
+        let (flag, points) = self.point_budget;
         anyhow::ensure!(
-            (1000..=2_000_000).contains(&point_budget),
-            "--point-budget must be 1000 to 2000000 points, not {point_budget}"
+            (1000..=2_000_000).contains(&points),
+            "{flag} must be 1000 to 2000000 points, not {points}"
         );
+        let (flag, rate, what) = self.rate;
         anyhow::ensure!(
-            self.max_rate.is_finite() && self.max_rate > 0.0 && self.max_rate <= 1000.0,
-            "--max-rate must be more than 0 and at most 1000 updates a second, not {}",
-            self.max_rate
+            rate.is_finite() && rate > 0.0 && rate <= 1000.0,
+            "{flag} must be more than 0 and at most 1000 {what} a second, not {rate}"
         );
+        let timeout = self.verdict_timeout;
         anyhow::ensure!(
-            self.verdict_timeout.is_finite()
-                && self.verdict_timeout > 0.0
-                && self.verdict_timeout <= 3600.0,
-            "--verdict-timeout must be more than 0 and at most 3600 seconds, not {}",
-            self.verdict_timeout
+            timeout.is_finite() && timeout > 0.0 && timeout <= 3600.0,
+            "--verdict-timeout must be more than 0 and at most 3600 seconds, not {timeout}"
         );
         let arms = self
             .arm_files
             .iter()
             .map(|path| read_arm_file(path).map(|file| file.arm))
             .collect::<Result<Vec<_>>>()?;
-        Ok(ViewerSettings {
-            point_budget,
-            pace_ns: (1e9 / self.max_rate) as u64,
-            arms,
-            verdict_timeout_ns: (self.verdict_timeout * 1e9) as u64,
-            blend_stream: self.blend_stream.clone(),
-        })
+        Ok(((1e9 / rate) as u64, arms, (timeout * 1e9) as u64))
     }
 }
 

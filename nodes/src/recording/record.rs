@@ -8,7 +8,7 @@ use super::mcap_file::{FileOptions, McapFile};
 use super::shared::Recording;
 use super::views::{FoxgloveViews, ViewSettings};
 use super::writer::{run_writer, Arrival, WriterPlan, WrittenFile};
-use crate::arm_file::read_arm_file;
+use crate::args::ViewLimits;
 use crate::runtime::{self, run_node, NodeCommon, NodeContext};
 use crate::transport::WaitQueue;
 use anyhow::{bail, Context, Result};
@@ -170,33 +170,18 @@ fn plan(args: &RecordArgs) -> Result<Plan> {
 
 /// The `--foxglove` views' settings, checked.
 fn views(args: &RecordArgs) -> Result<FoxgloveViews> {
-    anyhow::ensure!(
-        (1000..=2_000_000).contains(&args.points_budget),
-        "--points-budget must be 1000 to 2000000 points, not {}",
-        args.points_budget
-    );
-    anyhow::ensure!(
-        args.verdict_timeout.is_finite()
-            && args.verdict_timeout > 0.0
-            && args.verdict_timeout <= 3600.0,
-        "--verdict-timeout must be more than 0 and at most 3600 seconds, not {}",
-        args.verdict_timeout
-    );
-    anyhow::ensure!(
-        args.foxglove_rate.is_finite() && args.foxglove_rate > 0.0 && args.foxglove_rate <= 1000.0,
-        "--foxglove-rate must be more than 0 and at most 1000 views a second, not {}",
-        args.foxglove_rate
-    );
-    let arms = args
-        .arm_files
-        .iter()
-        .map(|path| read_arm_file(path).map(|file| file.arm))
-        .collect::<Result<Vec<_>>>()?;
+    let limits = ViewLimits {
+        point_budget: ("--points-budget", args.points_budget),
+        rate: ("--foxglove-rate", args.foxglove_rate, "views"),
+        verdict_timeout: args.verdict_timeout,
+        arm_files: &args.arm_files,
+    };
+    let (pace_ns, arms, verdict_timeout_ns) = limits.check()?;
     Ok(FoxgloveViews::new(ViewSettings {
         point_budget: args.points_budget,
-        pace_ns: (1e9 / args.foxglove_rate) as u64,
+        pace_ns,
         arms,
-        verdict_timeout_ns: (args.verdict_timeout * 1e9) as u64,
+        verdict_timeout_ns,
     }))
 }
 
