@@ -480,3 +480,55 @@ fn http_get(address: &str, path: &str) -> String {
     stream.read_to_string(&mut response).unwrap();
     response
 }
+
+/// The speed and separation monitoring demo, `launch/cell.toml` (its
+/// dashboard left out, so that it runs beside the demo test's): as the
+/// person walks past, the guard's verdicts go from full speed to scaled
+/// clears (with the link that limits them) to stops, and back to clears as
+/// the person leaves.
+#[test]
+fn the_cell_demo_slows_stops_and_resumes_the_arm_as_the_person_passes() {
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/launch/cell.toml")).unwrap();
+    let graph = text.split("[[node]]\nname = \"dashboard\"").next().unwrap();
+    assert!(graph.len() < text.len(), "cell.toml has a dashboard node");
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_launch(dir.path(), graph);
+    let launcher = Proc::start(&["launch", &file, "--duration", "20"]);
+    let session = client_of(&endpoint_of(&launcher));
+    let verdicts = session
+        .declare_subscriber("shroud/cell/collision/cell_arm")
+        .wait()
+        .unwrap();
+    let (mut full, mut scaled, mut stops, mut resumed) = (0, 0, 0, 0);
+    let mut limiting = std::collections::BTreeSet::new();
+    let start = Instant::now();
+    while start.elapsed() < Duration::from_secs(17) {
+        let Ok(Some(sample)) = verdicts.recv_timeout(Duration::from_secs(1)) else {
+            continue;
+        };
+        let c = collision(&sample);
+        match (c.stop, c.speed_scale) {
+            (true, s) => {
+                assert_eq!(s, 0.0, "{c:?}");
+                stops += 1;
+            }
+            (false, s) if s == 1.0 => full += 1,
+            (false, s) => {
+                assert!(s > 0.0 && s < 1.0, "{c:?}");
+                scaled += 1;
+                limiting.insert(c.limiting_link.clone());
+            }
+        }
+        if !c.stop && stops > 0 {
+            resumed += 1;
+        }
+    }
+    assert!(
+        full > 0 && scaled > 0 && stops > 0 && resumed > 0,
+        "full {full}, scaled {scaled}, stops {stops}, clears after a stop {resumed}"
+    );
+    // A scale limited by separation names the link (a rise-limited one does not).
+    assert!(limiting.iter().any(|l| !l.is_empty()), "{limiting:?}");
+    drop(launcher);
+}

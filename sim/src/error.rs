@@ -42,7 +42,7 @@ pub enum SceneError {
         reason: &'static str,
     },
     /// `Scene::by_name` got a name it does not know.
-    #[error("unknown scene `{name}`; expected one of: moving-spheres, terrain, table-top, scan-table-top, scan-terrain (scan-mesh is built from a mesh with Scene::scan_mesh)")]
+    #[error("unknown scene `{name}`; expected one of: moving-spheres, terrain, table-top, scan-table-top, scan-terrain, crossing (scan-mesh is built from a mesh with Scene::scan_mesh)")]
     UnknownScene { name: String },
     /// `part_by_name` got a name it does not know.
     #[error("unknown part `{name}`; expected hemisphere or half-cylinder")]

@@ -3,7 +3,8 @@
 //! Large Point Clouds" (Section 7: two moving spherical scatter clouds) plus a terrain
 //! (smooth hills and sharp cliffs, the Gibbs case) and a table top (boxes and a
 //! cylinder, the aliasing case). Every generator validates its parameters and returns
-//! a [`SceneError`] instead of panicking.
+//! a [`SceneError`] instead of panicking. [`Crossing`] walks a person across a
+//! cell, the scene of the speed and separation monitoring demo.
 //!
 //! The scan scenes put a simulated [`RangeScanner`] (rays cast through a [`Bvh`]
 //! of a triangle mesh, with range noise and dropouts) around the table-top and
@@ -13,6 +14,7 @@
 //! of moving solids, scanned, fitted and judged by shroud, every verdict
 //! compared with exact geometry of its own.
 
+mod crossing;
 mod error;
 mod mesh_scene;
 mod moving_spheres;
@@ -28,6 +30,7 @@ mod table_top;
 mod terrain;
 pub mod world;
 
+pub use crossing::Crossing;
 pub use error::{SceneError, MAX_POINTS};
 pub use mesh_scene::{DEFAULT_CYLINDER_SEGMENTS, DEFAULT_TERRAIN_CELLS, MAX_CYLINDER_SEGMENTS};
 pub use moving_spheres::{Floor, MovingSpheres};

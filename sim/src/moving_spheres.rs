@@ -58,7 +58,7 @@ impl Floor {
         (2.0 * f64::from(self.half_extent) / f64::from(self.spacing)).floor() as usize + 1
     }
 
-    fn validate(&self) -> Result<(), SceneError> {
+    pub(crate) fn validate(&self) -> Result<(), SceneError> {
         check_finite("floor.z", f64::from(self.z))?;
         check_positive("floor.half_extent", f64::from(self.half_extent))?;
         check_positive("floor.spacing", f64::from(self.spacing))?;
@@ -74,7 +74,7 @@ impl Floor {
     }
 
     /// The grid's points, row after row.
-    fn points(&self) -> impl Iterator<Item = [f32; 3]> + '_ {
+    pub(crate) fn points(&self) -> impl Iterator<Item = [f32; 3]> + '_ {
         let n = self.per_side();
         let at = move |i: usize| -self.half_extent + i as f32 * self.spacing;
         (0..n).flat_map(move |j| (0..n).map(move |i| [at(i), at(j), self.z]))

@@ -1,5 +1,6 @@
 //! One enum over all scenes, so a CLI or config file can pick a scene by name.
 
+use crate::crossing::Crossing;
 use crate::error::{check_finite, check_points, SceneError};
 use crate::moving_spheres::MovingSpheres;
 use crate::scanner::{
@@ -36,6 +37,8 @@ pub enum Scene {
     /// "part.obj", "scanner": {...}}`; the caller loads the mesh and attaches it
     /// ([`Scene::mesh_to_load`], [`Scene::attach_mesh`]).
     ScanMesh(MeshScan),
+    /// A person (a capsule) walking across a cell and back (animated).
+    Crossing(Crossing),
 }
 
 impl Default for Scene {
@@ -47,12 +50,13 @@ impl Default for Scene {
 
 impl Scene {
     /// Names accepted by [`Scene::by_name`], in declaration order.
-    pub const NAMES: [&'static str; 5] = [
+    pub const NAMES: [&'static str; 6] = [
         "moving-spheres",
         "terrain",
         "table-top",
         "scan-table-top",
         "scan-terrain",
+        "crossing",
     ];
 
     /// Name (and serde tag) of the scene that scans a user's mesh; it needs the
@@ -69,6 +73,7 @@ impl Scene {
             Self::ScanTableTop(_) => Self::NAMES[3],
             Self::ScanTerrain(_) => Self::NAMES[4],
             Self::ScanMesh(_) => Self::MESH_SCENE,
+            Self::Crossing(_) => Self::NAMES[5],
         }
     }
 
@@ -101,6 +106,11 @@ impl Scene {
             }),
             "scan-table-top" => Self::ScanTableTop(TableTopScan::new(TableTop::default(), scanner)),
             "scan-terrain" => Self::ScanTerrain(TerrainScan::new(Terrain::default(), scanner)),
+            "crossing" => Self::Crossing(Crossing {
+                points,
+                seed,
+                ..Crossing::default()
+            }),
             Self::MESH_SCENE => {
                 return Err(SceneError::MeshRequired {
                     name: name.to_owned(),
@@ -195,6 +205,7 @@ impl Scene {
             Self::MovingSpheres(s) => s.points,
             Self::Terrain(t) => t.points,
             Self::TableTop(t) => t.points,
+            Self::Crossing(c) => c.points,
             Self::ScanTableTop(_) | Self::ScanTerrain(_) | Self::ScanMesh(_) => {
                 self.scanner().map_or(0, RangeScanner::rays)
             }
@@ -205,7 +216,7 @@ impl Scene {
     /// scanner moves or has noise or dropouts (drawn afresh for every time).
     pub fn is_animated(&self) -> bool {
         match self {
-            Self::MovingSpheres(_) => true,
+            Self::MovingSpheres(_) | Self::Crossing(_) => true,
             Self::Terrain(_) | Self::TableTop(_) => false,
             Self::ScanTableTop(_) | Self::ScanTerrain(_) | Self::ScanMesh(_) => {
                 self.scanner().is_some_and(RangeScanner::is_animated)
@@ -223,6 +234,7 @@ impl Scene {
             Self::ScanTableTop(s) => s.validate(),
             Self::ScanTerrain(s) => s.validate(),
             Self::ScanMesh(s) => s.validate(),
+            Self::Crossing(c) => c.validate(),
         }
     }
 
@@ -245,6 +257,7 @@ impl Scene {
             Self::MovingSpheres(s) => s.generate(time).map(|p| (p, None)),
             Self::Terrain(t) => t.generate().map(|p| (p, None)),
             Self::TableTop(t) => t.generate().map(|p| (p, None)),
+            Self::Crossing(c) => c.generate(time).map(|p| (p, None)),
             Self::ScanTableTop(s) => s.scan(time).map(scanned),
             Self::ScanTerrain(s) => s.scan(time).map(scanned),
             Self::ScanMesh(s) => s.scan(time).map(scanned),

@@ -15,8 +15,16 @@ use shroud_viewers::describe::describe;
 /// Sequence numbers at and above this one mark bad messages.
 pub const BAD_SEQUENCES: u64 = 1 << 40;
 
-/// Versions other than this build's, cycled through.
-const OTHER_VERSIONS: [u16; 4] = [0, 1, SCHEMA_VERSION + 1, u16::MAX];
+/// Versions other than the one this build reads of `kind`, cycled through:
+/// 0, the previous and next versions, and the largest.
+fn other_versions(kind: TopicKind) -> [u16; 4] {
+    let current = match kind {
+        TopicKind::Joints => JointStateMessage::VERSION,
+        TopicKind::Collision => CollisionMessage::VERSION,
+        _ => SCHEMA_VERSION,
+    };
+    [0, current - 1, current + 1, u16::MAX]
+}
 
 /// How a bad message is bad.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -45,7 +53,8 @@ pub fn bad_messages(kind: TopicKind, real: &[u8], count: usize, seed: u64) -> Ve
                 // Every cut from the empty message to one byte short.
                 Badness::Truncated => real[..real.len() * i / count].to_vec(),
                 Badness::WrongVersion => {
-                    let version = OTHER_VERSIONS[i % OTHER_VERSIONS.len()];
+                    let versions = other_versions(kind);
+                    let version = versions[i % versions.len()];
                     reversioned(kind, real, version, BAD_SEQUENCES + i as u64)
                         .expect("a real message re-encodes")
                 }

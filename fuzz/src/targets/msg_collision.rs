@@ -17,9 +17,10 @@ pub fn run(data: &[u8]) {
     }
 }
 
+/// A stop, and a clear that lets the arm move at a scaled speed.
 pub fn seeds() -> Vec<Vec<u8>> {
-    let message = CollisionMessage {
-        version: shroud_msg::SCHEMA_VERSION,
+    let stop = CollisionMessage {
+        version: CollisionMessage::VERSION,
         joints_stamp_ns: 100,
         joints_sequence: 7,
         arm: "arm".into(),
@@ -40,6 +41,27 @@ pub fn seeds() -> Vec<Vec<u8>> {
             unobserved: true,
         }],
         check_ns: 5000,
+        speed_scale: 0.0,
+        limiting_link: String::new(),
+        protective_distance: 0.05,
     };
-    vec![message.to_bytes().expect("the seed message encodes")]
+    let clear = CollisionMessage {
+        verdict: GuardVerdict::Clear,
+        stop: false,
+        reason: String::new(),
+        min_clearance: 0.3,
+        links: vec![LinkClearance {
+            link: "forearm".into(),
+            clearance: 0.3,
+            unobserved: false,
+        }],
+        speed_scale: 0.35,
+        limiting_link: "forearm".into(),
+        protective_distance: 0.27,
+        ..stop.clone()
+    };
+    [stop, clear]
+        .iter()
+        .map(|m| m.to_bytes().expect("the seed message encodes"))
+        .collect()
 }

@@ -17,8 +17,13 @@ pub fn run(data: &[u8]) {
     }
 }
 
+/// A joint state without velocities, and one with them.
 pub fn seeds() -> Vec<Vec<u8>> {
     let names = vec!["shoulder".to_string(), "elbow".to_string()];
-    let message = JointStateMessage::new(10, 4, "arm", names, vec![0.5, -1.25]);
-    vec![message.to_bytes().expect("the seed message encodes")]
+    let still = JointStateMessage::new(10, 4, "arm", names, vec![0.5, -1.25]);
+    let moving = still.clone().with_velocities(vec![0.75, -0.2]);
+    [still, moving]
+        .iter()
+        .map(|m| m.to_bytes().expect("the seed message encodes"))
+        .collect()
 }

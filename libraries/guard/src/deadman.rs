@@ -57,6 +57,8 @@ pub struct Deadman {
     sent: VecDeque<Sent>,
     /// The newest clear applied.
     clear: Option<Sent>,
+    /// Its speed scale.
+    clear_scale: f64,
     /// The newest stop: the newest sequence sent when it arrived (a clear must
     /// answer a later one) and its verdict.
     stop: Option<(Option<u64>, GuardVerdict)>,
@@ -70,6 +72,7 @@ impl Deadman {
             deadline_ns,
             sent: VecDeque::with_capacity(REMEMBERED),
             clear: None,
+            clear_scale: 0.0,
             stop: None,
         }
     }
@@ -118,8 +121,22 @@ impl Deadman {
         });
     }
 
-    /// A verdict arrived for joint state (`sequence`, `stamp_ns`).
+    /// A verdict arrived for joint state (`sequence`, `stamp_ns`), a `clear`
+    /// at full speed.
     pub fn verdict(&mut self, sequence: u64, stamp_ns: u64, verdict: GuardVerdict) -> VerdictUse {
+        self.scaled_verdict(sequence, stamp_ns, verdict, 1.0)
+    }
+
+    /// A verdict with its speed scale arrived for joint state (`sequence`,
+    /// `stamp_ns`): a `clear` lets the consumer move at `scale` of its
+    /// nominal speed.
+    pub fn scaled_verdict(
+        &mut self,
+        sequence: u64,
+        stamp_ns: u64,
+        verdict: GuardVerdict,
+        scale: f64,
+    ) -> VerdictUse {
         if verdict != GuardVerdict::Clear {
             // Whatever it answers, only joint states sent from now on can
             // clear it.
@@ -144,6 +161,8 @@ impl Deadman {
         }
         if self.clear.is_none_or(|c| answered.sequence > c.sequence) {
             self.clear = Some(answered);
+            // NaN or out of range is never a reason to move faster.
+            self.clear_scale = if scale >= 0.0 { scale.min(1.0) } else { 0.0 };
         }
         VerdictUse::Applied
     }
@@ -153,6 +172,16 @@ impl Deadman {
         match self.stop {
             Some((Some(s), _)) => sequence > s,
             _ => true,
+        }
+    }
+
+    /// The fraction of its nominal speed the consumer may move at, at
+    /// `now_ns`: the newest applied clear's scale while it allows motion, 0
+    /// otherwise.
+    pub fn scale(&self, now_ns: u64) -> f64 {
+        match self.motion(now_ns) {
+            Motion::Move => self.clear_scale,
+            Motion::Halt(_) => 0.0,
         }
     }
 
@@ -213,6 +242,27 @@ mod tests {
         assert_eq!(d.motion(5 * MS), Motion::Halt(GuardVerdict::NoVerdict));
         assert_eq!(answer(&mut d, 0, CLEAR), VerdictUse::Applied);
         assert_eq!(d.motion(5 * MS), Motion::Move);
+    }
+
+    #[test]
+    fn the_newest_clear_sets_the_speed_scale_and_a_halt_zeroes_it() {
+        let mut d = deadman();
+        send(&mut d, 0, 0);
+        send(&mut d, 1, 20 * MS);
+        d.scaled_verdict(1, 1001, CLEAR, 0.4);
+        assert_eq!(d.scale(25 * MS), 0.4);
+        // An older clear does not override the newer one's scale.
+        d.scaled_verdict(0, 1000, CLEAR, 1.0);
+        assert_eq!(d.scale(25 * MS), 0.4);
+        // Silence past the deadline: no speed at all.
+        assert_eq!(d.scale(80 * MS + 1), 0.0);
+        // A scale that is no number never moves the arm.
+        send(&mut d, 2, 90 * MS);
+        d.scaled_verdict(2, 1002, CLEAR, f64::NAN);
+        assert_eq!(d.scale(95 * MS), 0.0);
+        send(&mut d, 3, 100 * MS);
+        answer(&mut d, 3, STOP);
+        assert_eq!(d.scale(101 * MS), 0.0);
     }
 
     #[test]

@@ -87,4 +87,7 @@ pub enum GuardError {
     },
     #[error("surrogate: {0}")]
     Surrogate(#[from] QueryError),
+    /// Speed monitoring needs the joint state's age, and it cannot be told.
+    #[error("joint state timing: {0}")]
+    JointStateTiming(String),
 }

@@ -49,6 +49,7 @@ mod probe;
 mod report;
 mod resume;
 mod schema;
+mod separation;
 mod shape;
 mod trajectory;
 mod unseen;
@@ -63,8 +64,8 @@ pub use arm::{ArmModel, Link};
 pub use config::{GuardConfig, MAX_HORIZON, MAX_REFINE_DEPTH};
 pub use deadman::{Deadman, Motion, VerdictUse};
 pub use decision::{
-    CollisionGuard, Decision, GuardPolicy, SurrogateInput, SurrogateRecord, SurrogateRejected,
-    UnobservedPolicy,
+    CollisionGuard, Decision, GuardPolicy, JointMotionSample, SurrogateInput, SurrogateRecord,
+    SurrogateRejected, UnobservedPolicy,
 };
 pub use envelope::{CellBox, Envelope};
 pub use error::GuardError;
@@ -74,6 +75,10 @@ pub use kinematics::ArmPose;
 pub use report::{check_arm, check_shapes, GuardReport, ShapeClearance};
 pub use resume::ResumeAfter;
 pub use schema::ArmFile;
+pub use separation::{
+    protective, ArmMotion, JointMotion, LeverArms, MotionNow, OverLimit, Protective, ScaleGovernor,
+    SpeedMonitor, SpeedScale, Stop, StopSample, StoppingModel, Timing, OVER_LIMIT_TOLERANCE,
+};
 pub use shape::{Capsule, Shape, Sphere, WorldShape};
 pub use trajectory::{Trajectory, Waypoint};
 pub use verdict_watch::{ShownVerdict, VerdictWatch};

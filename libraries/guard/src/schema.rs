@@ -35,6 +35,10 @@
 //! refine_depth = 3
 //! max_obstacle_speed = 0.0            # m/s; clearances shrink by this times (age + horizon)
 //! horizon = 0.1                       # s; the arm moves at most this long on a verdict
+//!
+//! [motion]                           # optional: speed and separation monitoring,
+//! reaction_time = 0.1                # see `separation::file` for the whole table
+//! joints = [{ name = "shoulder_pan", max_velocity = 1.5, deceleration = 6.0 }]
 //! ```
 //!
 //! A link's shapes are its spheres, then its capsules, in file order. Unknown keys
@@ -44,6 +48,7 @@ use super::arm::{ArmModel, Link};
 use super::config::GuardConfig;
 use super::error::GuardError;
 use super::joint::{origin_from_xyz_rpy, Joint, JointKind};
+use super::separation::{ArmMotion, RawMotion};
 use super::shape::Shape;
 use super::trajectory::{Trajectory, Waypoint};
 use glam::DVec3;
@@ -57,6 +62,9 @@ pub struct ArmFile {
     pub trajectory: Option<Trajectory>,
     /// `GuardConfig::default()` when the file has no `[guard]` table.
     pub guard: GuardConfig,
+    /// The `[motion]` table, validated against the arm: without it the guard
+    /// cannot bound the arm's own motion and does not scale its speed.
+    pub motion: Option<ArmMotion>,
 }
 
 impl ArmFile {
@@ -79,10 +87,15 @@ impl ArmFile {
             .transpose()?;
         let guard = raw.guard.unwrap_or_default();
         guard.validate()?;
+        let motion = raw.motion.map(|m| m.for_arm(&arm)).transpose()?;
+        if let (Some(motion), Some(trajectory)) = (&motion, &trajectory) {
+            motion.check_trajectory(&arm, trajectory)?;
+        }
         Ok(Self {
             arm,
             trajectory,
             guard,
+            motion,
         })
     }
 }
@@ -107,6 +120,7 @@ struct RawFile {
     joints: Vec<RawJoint>,
     trajectory: Option<RawTrajectory>,
     guard: Option<GuardConfig>,
+    motion: Option<RawMotion>,
 }
 
 fn default_name() -> String {

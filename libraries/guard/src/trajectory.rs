@@ -176,6 +176,57 @@ impl Trajectory {
         Ok(())
     }
 
+    /// Joint speeds (rad/s or m/s) at `time`: the derivative of
+    /// [`Self::positions_at`], `(q - p) π sin(π x) / 2d` within a move of
+    /// duration `d`, and 0 where the trajectory holds still.
+    pub fn velocities_at(&self, time: f64) -> Result<Vec<f64>, GuardError> {
+        if !time.is_finite() {
+            return Err(GuardError::BadTime(time));
+        }
+        let n = self.waypoints.len();
+        let (from, x, moving) = if self.period <= 0.0 {
+            (n - 1, 0.0, false)
+        } else if self.looping {
+            let (i, x) = self.segment(time.rem_euclid(self.period), n);
+            (i, x, true)
+        } else if time >= self.period || time < 0.0 {
+            (n - 1, 0.0, false)
+        } else {
+            let (i, x) = self.segment(time, n - 1);
+            (i, x, true)
+        };
+        let to = (from + 1) % n;
+        let duration = self.waypoints[from].duration;
+        let rate = if moving && duration > 0.0 {
+            0.5 * PI * (PI * x).sin() / duration
+        } else {
+            0.0
+        };
+        let (a, b) = (
+            &self.waypoints[from].positions,
+            &self.waypoints[to].positions,
+        );
+        Ok(a.iter().zip(b).map(|(p, q)| (q - p) * rate).collect())
+    }
+
+    /// Per joint, the fastest the trajectory moves it: `π |q - p| / 2d` at
+    /// the middle of its fastest move.
+    pub fn peak_velocities(&self) -> Vec<f64> {
+        let n = self.waypoints.len();
+        let moves = if self.looping { n } else { n.saturating_sub(1) };
+        let mut peak = vec![0.0f64; self.dof()];
+        for i in 0..moves {
+            let (a, b) = (&self.waypoints[i], &self.waypoints[(i + 1) % n]);
+            if a.duration <= 0.0 {
+                continue;
+            }
+            for (k, (p, q)) in a.positions.iter().zip(&b.positions).enumerate() {
+                peak[k] = peak[k].max(0.5 * PI * (q - p).abs() / a.duration);
+            }
+        }
+        peak
+    }
+
     /// The move containing `t` (among the first `moves`) and the fraction done.
     fn segment(&self, t: f64, moves: usize) -> (usize, f64) {
         let i = self.starts[..moves]
@@ -189,6 +240,32 @@ impl Trajectory {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn velocities_are_the_derivative_and_peak_mid_move() {
+        let t = Trajectory::new(vec![wp(&[0.0, 1.0], 2.0), wp(&[1.0, 0.0], 1.0)], true).unwrap();
+        assert_eq!(t.peak_velocities(), vec![0.5 * PI, 0.5 * PI]);
+        for time in [0.1, 0.7, 1.0, 1.9, 2.3, 2.95, -0.4] {
+            let h = 1e-6;
+            let (a, b) = (
+                t.positions_at(time - h).unwrap(),
+                t.positions_at(time + h).unwrap(),
+            );
+            let v = t.velocities_at(time).unwrap();
+            for k in 0..2 {
+                let numeric = (b[k] - a[k]) / (2.0 * h);
+                assert!(
+                    (numeric - v[k]).abs() < 1e-5,
+                    "{time}: {numeric} vs {}",
+                    v[k]
+                );
+                assert!(v[k].abs() <= t.peak_velocities()[k] + 1e-12);
+            }
+        }
+        let once = Trajectory::new(vec![wp(&[0.0], 1.0), wp(&[2.0], 1.0)], false).unwrap();
+        assert_eq!(once.velocities_at(5.0).unwrap(), vec![0.0]);
+        assert_eq!(once.peak_velocities(), vec![PI]);
+    }
 
     fn wp(p: &[f64], d: f64) -> Waypoint {
         Waypoint {

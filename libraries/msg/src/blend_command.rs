@@ -107,7 +107,7 @@ impl BlendCommandMessage {
     /// numbers, a part name only on a drop.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, MessageError> {
         let msg: Self = decode(bytes)?;
-        check_version(msg.version)?;
+        check_version("blend command", msg.version, SCHEMA_VERSION)?;
         msg.command()?;
         msg.check_part()?;
         Ok(msg)

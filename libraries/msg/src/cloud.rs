@@ -217,7 +217,10 @@ mod tests {
         msg.version = 99;
         assert!(matches!(
             CloudMessage::from_bytes(&msg.to_bytes().unwrap()),
-            Err(MessageError::Version { .. })
+            Err(MessageError::Version {
+                message: "cloud",
+                ..
+            })
         ));
         let mut msg = sample();
         msg.channels.as_mut().unwrap().get_mut("rcs").unwrap().pop();

@@ -189,7 +189,7 @@ impl<'a> CloudView<'a> {
     /// and the blobs' lengths. Point values are checked by [`Self::read_points`].
     pub fn from_bytes(bytes: &'a [u8]) -> Result<Self, MessageError> {
         let view: CloudView<'a> = super::blob::decode(bytes)?;
-        check_version(view.version)?;
+        check_version("cloud", view.version, SCHEMA_VERSION)?;
         check_position_error(view.position_error_m)?;
         if let Some(fov) = &view.field_of_view {
             fov.validate()?;
@@ -453,7 +453,10 @@ mod tests {
         version.version = SCHEMA_VERSION + 1;
         assert!(matches!(
             CloudView::from_bytes(&version.to_bytes().unwrap()),
-            Err(MessageError::Version { .. })
+            Err(MessageError::Version {
+                message: "cloud",
+                ..
+            })
         ));
     }
 

@@ -6,8 +6,14 @@ use thiserror::Error;
 pub enum MessageError {
     #[error("not a valid shroud message: {0}")]
     Malformed(String),
-    #[error("message schema version {found}, this build reads version {expected}")]
-    Version { found: u16, expected: u16 },
+    /// A message of another schema version than this build reads; `message`
+    /// names its kind (`"joint state"`, `"collision"`, ...).
+    #[error("{message} message version {found}, this build reads version {expected}")]
+    Version {
+        message: &'static str,
+        found: u16,
+        expected: u16,
+    },
     #[error("the {field} blob has {len} bytes, not a multiple of {unit}")]
     BlobLength {
         field: &'static str,

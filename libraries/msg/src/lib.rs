@@ -1,7 +1,8 @@
-//! The wire schema of shroud's messages (version 2): MessagePack maps with named
-//! fields, bulk arrays as little-endian byte blobs, so that any language decodes a
-//! message with a MessagePack library and a byte-to-array view (numpy's
-//! `frombuffer`). Pure encode/decode with validation; transport lives in `nodes/`.
+//! The wire schema of shroud's messages (version 2; joint states and collision
+//! messages version 3): MessagePack maps with named fields, bulk arrays as
+//! little-endian byte blobs, so that any language decodes a message with a
+//! MessagePack library and a byte-to-array view (numpy's `frombuffer`). Pure
+//! encode/decode with validation; transport lives in `nodes/`.
 
 mod blend_command;
 mod blend_request;
@@ -54,21 +55,47 @@ pub use surface::{Certificate, Domain, Side, DOMAIN_SLACK};
 pub use surrogate::{SurfaceMessage, SurrogateMessage};
 pub use topic::{check_name, Congestion, TopicKey, TopicKind, TopicQos, Topics, ROOT};
 
-/// The schema version every message carries; decoders refuse other versions.
-/// Version 2 added `pipeline_ns` to clouds and surrogates and the guard's
-/// age, views, reason and unobserved-space fields to collision messages.
+/// The schema version of every message except joint states and collision
+/// messages, which carry their own ([`JointStateMessage::VERSION`],
+/// [`CollisionMessage::VERSION`]); decoders refuse other versions, naming the
+/// message. Version 2 added `pipeline_ns` to clouds and surrogates and the
+/// guard's age, views, reason and unobserved-space fields to collision
+/// messages.
 pub const SCHEMA_VERSION: u16 = 2;
 
-/// Checks a decoded message's version.
-pub(crate) fn check_version(found: u16) -> Result<(), MessageError> {
-    if found == SCHEMA_VERSION {
+/// Checks a decoded `message`'s version against the one this build reads.
+pub(crate) fn check_version(
+    message: &'static str,
+    found: u16,
+    expected: u16,
+) -> Result<(), MessageError> {
+    if found == expected {
         Ok(())
     } else {
         Err(MessageError::Version {
+            message,
             found,
-            expected: SCHEMA_VERSION,
+            expected,
         })
     }
+}
+
+/// Decodes a message whose version must be `expected`, checking the version
+/// before anything else: a message of another version, whose fields may
+/// differ, is refused as that, by name, not as malformed.
+pub(crate) fn decode_versioned<'a, T: serde::Deserialize<'a>>(
+    bytes: &'a [u8],
+    message: &'static str,
+    expected: u16,
+) -> Result<T, MessageError> {
+    /// Only the version of a message (serde skips the other fields).
+    #[derive(serde::Deserialize)]
+    struct Versioned {
+        version: u16,
+    }
+    let Versioned { version } = blob::decode(bytes)?;
+    check_version(message, version, expected)?;
+    blob::decode(bytes)
 }
 
 /// Checks that every value of a decoded field is finite.
@@ -76,5 +103,81 @@ pub(crate) fn check_finite(field: &'static str, values: &[f64]) -> Result<(), Me
     match values.iter().position(|v| !v.is_finite()) {
         Some(index) => Err(MessageError::NonFinite { field, index }),
         None => Ok(()),
+    }
+}
+
+/// Byte mutations of valid encodings, and the check that a decoder's error
+/// names what it refused, for the decoders' property tests.
+#[cfg(test)]
+pub(crate) mod mutation {
+    use crate::MessageError;
+    use proptest::prelude::*;
+    use proptest::sample::Index;
+
+    /// One edit of an encoding.
+    #[derive(Debug, Clone)]
+    enum Edit {
+        Set(Index, u8),
+        FlipBit(Index, u8),
+        Insert(Index, u8),
+        Remove(Index),
+        Truncate(Index),
+    }
+
+    fn edit() -> impl Strategy<Value = Edit> {
+        prop_oneof![
+            3 => (any::<Index>(), any::<u8>()).prop_map(|(i, b)| Edit::Set(i, b)),
+            3 => (any::<Index>(), 0u8..8).prop_map(|(i, b)| Edit::FlipBit(i, b)),
+            1 => (any::<Index>(), any::<u8>()).prop_map(|(i, b)| Edit::Insert(i, b)),
+            1 => any::<Index>().prop_map(Edit::Remove),
+            1 => any::<Index>().prop_map(Edit::Truncate),
+        ]
+    }
+
+    /// `bytes` after one to five random edits (set, flip a bit, insert,
+    /// remove, truncate), mostly one: most edits break the MessagePack
+    /// structure, and one edit of a value is what reaches the validation.
+    pub fn mutated(bytes: Vec<u8>) -> impl Strategy<Value = Vec<u8>> {
+        let edits = prop_oneof![
+            3 => proptest::collection::vec(edit(), 1..2),
+            1 => proptest::collection::vec(edit(), 2..6),
+        ];
+        edits.prop_map(move |edits| {
+            let mut out = bytes.clone();
+            for edit in edits {
+                let len = out.len();
+                match edit {
+                    Edit::Insert(i, b) => out.insert(i.index(len + 1), b),
+                    Edit::Truncate(i) => out.truncate(i.index(len + 1)),
+                    _ if len == 0 => {}
+                    Edit::Set(i, b) => out[i.index(len)] = b,
+                    Edit::FlipBit(i, bit) => out[i.index(len)] ^= 1 << bit,
+                    Edit::Remove(i) => {
+                        out.remove(i.index(len));
+                    }
+                }
+            }
+            out
+        })
+    }
+
+    /// Panics unless `error` says what it refused: a version error names
+    /// `message`, a field error one of `fields`, and the text is not empty.
+    pub fn assert_named(error: &MessageError, message: &str, fields: &[&str]) {
+        assert!(!error.to_string().trim().is_empty(), "{error:?}");
+        match error {
+            MessageError::Malformed(text) => assert!(!text.trim().is_empty(), "{error:?}"),
+            MessageError::Version { message: m, .. } => assert_eq!(*m, message, "{error}"),
+            MessageError::BlobLength { field, .. }
+            | MessageError::Count { field, .. }
+            | MessageError::NonFinite { field, .. }
+            | MessageError::Invalid { field, .. } => {
+                assert!(
+                    fields.contains(field),
+                    "{error} names no field of a {message}"
+                )
+            }
+            MessageError::PositionError { .. } => panic!("{error} from a {message}"),
+        }
     }
 }

@@ -3,7 +3,7 @@
 
 use super::blob::{bytes_to_f64s, decode, encode};
 use super::error::MessageError;
-use super::{check_finite, check_version};
+use super::{check_finite, check_version, SCHEMA_VERSION};
 use serde::{Deserialize, Serialize};
 
 /// Coefficients of one biquintic patch (6 x 6, paper 004, Section 3).
@@ -49,7 +49,7 @@ impl SmoothPatchesMessage {
     /// finite numbers, quad indices within the vertices.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, MessageError> {
         let msg: Self = decode(bytes)?;
-        check_version(msg.version)?;
+        check_version("smooth patches", msg.version, SCHEMA_VERSION)?;
         let dim = match msg.kind.as_str() {
             "graph" | "radial" => 1,
             "parametric" => 3,

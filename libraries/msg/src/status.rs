@@ -57,7 +57,7 @@ impl NodeStatusMessage {
 
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, MessageError> {
         let msg: Self = decode(bytes)?;
-        check_version(msg.version)?;
+        check_version("node status", msg.version, SCHEMA_VERSION)?;
         let gauges: Vec<f64> = msg.gauges.values().copied().collect();
         check_finite("gauges", &gauges)?;
         check_finite("uptime_s", &[msg.uptime_s])?;

@@ -3,7 +3,7 @@
 
 use super::blob::{decode, encode};
 use super::error::MessageError;
-use super::{check_version, FieldOfView, NoReturn};
+use super::{check_version, FieldOfView, NoReturn, SCHEMA_VERSION};
 use super::{Certificate, Domain, FitStats, Side};
 use serde::{Deserialize, Serialize};
 
@@ -79,7 +79,7 @@ impl SurrogateMessage {
     /// validating the surfaces is `shroud_surrogate::SurrogateWire::from_bytes`.
     pub fn decode(bytes: &[u8]) -> Result<Self, MessageError> {
         let msg: SurrogateMessage = decode(bytes)?;
-        check_version(msg.version)?;
+        check_version("surrogate", msg.version, SCHEMA_VERSION)?;
         if !(msg.position_error_m.is_finite() && msg.position_error_m >= 0.0) {
             return Err(MessageError::Invalid {
                 field: "position_error_m",

@@ -33,6 +33,17 @@ pub enum TopicKind {
 }
 
 impl TopicKind {
+    /// The schema version of this kind's messages: joint states and
+    /// collision messages are at 3 (velocities; the speed scale), every other
+    /// kind at [`crate::SCHEMA_VERSION`].
+    pub fn schema_version(self) -> u16 {
+        match self {
+            Self::Joints => crate::JointStateMessage::VERSION,
+            Self::Collision => crate::CollisionMessage::VERSION,
+            _ => crate::SCHEMA_VERSION,
+        }
+    }
+
     pub const ALL: [TopicKind; 8] = [
         Self::Cloud,
         Self::Surrogate,

@@ -27,13 +27,15 @@ pub struct SchemaRecord {
 }
 
 /// The schema of a topic kind's messages: `shroud.<Type>`, its data a JSON
-/// object naming the schema version and where it is specified.
+/// object naming the kind's schema version ([`TopicKind::schema_version`])
+/// and where it is specified.
 pub fn schema_for(kind: TopicKind) -> SchemaRecord {
     let data = format!(
         // "specification" is a frozen identifier in every recording of schema 2 (the
         // specification now lives in docs/formats.md): a recording's bytes do not
         // change with the repository's layout.
-        "{{\"schema_version\":{SCHEMA_VERSION},\"specification\":\"core/FORMATS.md\",\"topic_kind\":\"{kind}\"}}"
+        "{{\"schema_version\":{},\"specification\":\"core/FORMATS.md\",\"topic_kind\":\"{kind}\"}}",
+        kind.schema_version()
     );
     SchemaRecord {
         name: format!("shroud.{}", type_name(kind)),
@@ -120,9 +122,11 @@ pub fn replayable(channel: &ChannelDescription<'_>) -> Result<Option<TopicKey>, 
         )));
     }
     let version = schema_version(channel.schema_data);
-    if version != Some(u64::from(SCHEMA_VERSION)) {
+    let speaks = key.kind.schema_version();
+    if version != Some(u64::from(speaks)) {
         return Err(fail(format!(
-            "recorded with message schema version {}, this shroud speaks version {SCHEMA_VERSION}",
+            "recorded with {} message schema version {}, this shroud speaks version {speaks}",
+            key.kind,
             version.map_or("unknown".to_owned(), |v| v.to_string())
         )));
     }
@@ -178,5 +182,29 @@ mod tests {
         let e = replayable(&describe("shroud/demo/cloud/a", &old)).unwrap_err();
         assert!(e.to_string().contains("version 1"), "{e}");
         assert!(replayable(&describe("elsewhere/cloud", &schema)).is_err());
+    }
+
+    #[test]
+    fn each_kind_records_its_own_schema_version() {
+        let joints = schema_for(TopicKind::Joints);
+        assert_eq!(schema_version(&joints.data), Some(3));
+        assert_eq!(
+            schema_version(&schema_for(TopicKind::Collision).data),
+            Some(3)
+        );
+        assert_eq!(schema_version(&schema_for(TopicKind::Cloud).data), Some(2));
+        assert!(replayable(&describe("shroud/demo/joints/arm", &joints))
+            .unwrap()
+            .is_some());
+        // Joint states recorded before velocities: refused by kind and version.
+        let before = SchemaRecord {
+            data: b"{\"schema_version\":2}".to_vec(),
+            ..joints
+        };
+        let e = replayable(&describe("shroud/demo/joints/arm", &before)).unwrap_err();
+        assert!(
+            e.to_string().contains("joints message schema version 2"),
+            "{e}"
+        );
     }
 }

@@ -2,7 +2,9 @@
 //! arm file, publishes its joint states, and moves only while its [`Deadman`]
 //! allows: a fresh `clear` for one of its own recent joint states. A stop, a
 //! stale surrogate, or a guard that falls silent halts it; it resumes where it
-//! stopped once the guard clears it again (wait and resume).
+//! stopped once the guard clears it again (wait and resume). A `clear` with a
+//! speed scale below 1 slows it: its trajectory's time runs at that fraction
+//! of real time, and its joint states carry the velocities it moves at.
 
 use crate::arm_file::{joint_names, read_arm_file};
 use crate::runtime::{run_node, Arrival, NodeCommon, NodeContext};
@@ -116,18 +118,27 @@ fn serve(
     let mut resume = ResumeAfter::new((args.resume_after * 1e9) as u64);
     while !ctx.stopping() {
         let now = Instant::now();
-        let motion = if args.ignore_guard {
-            Motion::Move
+        let (motion, scale) = if args.ignore_guard {
+            (Motion::Move, 1.0)
         } else {
             let now_ns = monotonic_ns();
-            let allowed = lock(&verdicts).deadman.motion(now_ns);
-            resume.motion(allowed, now_ns)
+            let v = lock(&verdicts);
+            let allowed = v.deadman.motion(now_ns);
+            (resume.motion(allowed, now_ns), v.deadman.scale(now_ns))
         };
-        // Trajectory time advances only while the arm is allowed to move.
-        if motion == Motion::Move {
-            motion_time += (now - last).as_secs_f64();
+        // Trajectory time advances only while the arm is allowed to move,
+        // at the verdict's speed scale (a time-scaled trajectory: the same
+        // path, never faster than nominal).
+        let scale = if motion == Motion::Move { scale } else { 0.0 };
+        if scale > 0.0 {
+            motion_time += scale * (now - last).as_secs_f64();
             positions = trajectory.positions_at(motion_time)?;
         }
+        let velocities: Vec<f64> = trajectory
+            .velocities_at(motion_time)?
+            .iter()
+            .map(|v| v * scale)
+            .collect();
         // Not under the lock: a log line may block on a slow stderr.
         let reason = lock(&verdicts).last_reason.clone();
         halt.update(&ctx, motion, &reason, now);
@@ -139,12 +150,14 @@ fn serve(
             &arm_name,
             names.clone(),
             positions.clone(),
-        );
+        )
+        .with_velocities(velocities);
         lock(&verdicts)
             .deadman
             .sent(sequence, stamp_ns, monotonic_ns());
         joints.put(&msg);
         ctx.metrics.set(metric::TRAJECTORY_S, motion_time);
+        ctx.metrics.set(metric::SPEED_SCALE, scale);
         sequence += 1;
         std::thread::sleep(period.saturating_sub(now.elapsed()));
     }
@@ -153,10 +166,12 @@ fn serve(
 
 fn on_verdict(ctx: &NodeContext, verdicts: &Mutex<Verdicts>, msg: &CollisionMessage) {
     let mut v = lock(verdicts);
-    match v
-        .deadman
-        .verdict(msg.joints_sequence, msg.joints_stamp_ns, msg.verdict)
-    {
+    match v.deadman.scaled_verdict(
+        msg.joints_sequence,
+        msg.joints_stamp_ns,
+        msg.verdict,
+        msg.speed_scale,
+    ) {
         VerdictUse::Applied => ctx.metrics.add(metric::VERDICTS, 1),
         VerdictUse::Unknown => ctx.metrics.add(metric::VERDICTS_UNKNOWN, 1),
         VerdictUse::Superseded => ctx.metrics.add(metric::VERDICTS_SUPERSEDED, 1),

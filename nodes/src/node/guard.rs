@@ -10,7 +10,8 @@ use anyhow::Result;
 use clap::{Args, ValueEnum};
 use shroud_graph::metrics::names::{self as metric, Counter};
 use shroud_guard::{
-    ArmFile, CollisionGuard, Decision, Envelope, GuardPolicy, SurrogateInput, UnobservedPolicy,
+    ArmFile, ArmMotion, CollisionGuard, Decision, Envelope, GuardPolicy, JointMotionSample,
+    SpeedMonitor, StoppingModel, SurrogateInput, UnobservedPolicy,
 };
 use shroud_msg::{
     max_skew_ns_from_secs, CollisionMessage, JointStateMessage, MessageError, SurrogateMessage,
@@ -89,9 +90,50 @@ pub fn run(args: GuardArgs) -> Result<()> {
         );
     }
     let links = file.arm.links().iter().map(|l| l.name.clone()).collect();
-    let guard = CollisionGuard::new(args.surrogates.clone(), links, policy, file.guard)?;
+    let mut guard = CollisionGuard::new(args.surrogates.clone(), links, policy, file.guard)?;
+    match &file.motion {
+        Some(motion) => {
+            announce_speed_monitoring(&file, motion);
+            guard = guard.with_speed_monitor(SpeedMonitor::new(&file.arm, motion.clone())?);
+        }
+        None => tracing::info!(
+            "the arm file has no [motion] table: no speed scaling (clear at full speed or stop; the stop distance must cover the arm's own motion)"
+        ),
+    }
     let common = args.common.clone();
     run_node(&common, "guard", move |ctx| serve(ctx, args, file, guard))
+}
+
+/// Says at start what speed monitoring assumes, and which terms are taken
+/// as 0 for want of a value.
+fn announce_speed_monitoring(file: &ArmFile, motion: &ArmMotion) {
+    let joints: Vec<String> = file
+        .arm
+        .actuated_joints()
+        .zip(&motion.joints)
+        .map(|(j, m)| {
+            let stop = match &m.stopping {
+                StoppingModel::Deceleration(a) => format!("braking {a}/s²"),
+                StoppingModel::Measured(t) => format!("{} measured stops", t.len()),
+            };
+            format!("{} <= {}/s, {stop}", j.name(), m.max_velocity)
+        })
+        .collect();
+    tracing::info!(
+        reaction_time_s = motion.reaction_time,
+        position_uncertainty_m = motion.position_uncertainty,
+        scale_rise_per_s = motion.scale_rise_per_second,
+        max_obstacle_speed = file.guard.max_obstacle_speed,
+        horizon_s = file.guard.horizon,
+        "speed and separation monitoring (ISO/TS 15066): joints {}",
+        joints.join("; ")
+    );
+    if motion.position_uncertainty == 0.0 {
+        tracing::warn!("[motion] position_uncertainty (Z_r) is 0: the stop distance must cover the arm's position error");
+    }
+    if file.guard.max_obstacle_speed == 0.0 {
+        tracing::warn!("max_obstacle_speed is 0: nothing may move in the cell (ISO 13855 takes 1.6 m/s for a walking person)");
+    }
 }
 
 fn policy(args: &GuardArgs) -> Result<GuardPolicy> {
@@ -236,7 +278,7 @@ impl OnMessage<JointStateMessage> for Checker {
     /// why (and the message is counted as malformed).
     fn on_message(&self, arrival: &Arrival, msg: JointStateMessage) {
         let id = (msg.stamp_ns, msg.sequence);
-        let decision = match self.decide(&msg) {
+        let decision = match self.decide(&msg, arrival) {
             Ok(d) => d,
             Err(e) => {
                 self.metrics.drop_malformed(&arrival.key, &e);
@@ -255,7 +297,7 @@ impl OnMessage<JointStateMessage> for Checker {
 }
 
 impl Checker {
-    fn decide(&self, joints: &JointStateMessage) -> Result<Decision> {
+    fn decide(&self, joints: &JointStateMessage, arrival: &Arrival) -> Result<Decision> {
         anyhow::ensure!(
             joints.arm == self.arm_name,
             "joint state of arm {:?}, not {:?}",
@@ -271,7 +313,23 @@ impl Checker {
         // A pose outside the joints' limits is a glitch, not a pose to judge.
         self.file.arm.check_limits(&joints.positions)?;
         let pose = self.file.arm.forward(&joints.positions)?;
-        Ok(lock(&self.guard).decide(&pose.shapes, monotonic_ns())?)
+        let mut guard = lock(&self.guard);
+        let now_ns = monotonic_ns();
+        let age_ns = if guard.monitors_speed() {
+            guard.joint_state_age_ns(
+                arrival.published_ns,
+                arrival.received_wall_ns,
+                arrival.received_ns,
+                now_ns,
+            )?
+        } else {
+            0
+        };
+        let sample = JointMotionSample {
+            velocities: (!joints.velocities.is_empty()).then_some(joints.velocities.as_slice()),
+            age_ns,
+        };
+        Ok(guard.decide_moving(&pose.shapes, sample, now_ns)?)
     }
 
     /// The check's time counts from the joint state's arrival (its decoding
@@ -286,6 +344,7 @@ impl Checker {
             m.add(metric::STOPS, 1);
         }
         m.set(metric::MIN_CLEARANCE, out.min_clearance);
+        m.set(metric::SPEED_SCALE, out.speed_scale);
         m.set(metric::SURROGATE_AGE_MS, out.surrogate_age_ns as f64 / 1e6);
         m.set(metric::CHECK_US, check_ns as f64 / 1e3);
         self.verdicts.put(&out);

@@ -31,12 +31,12 @@ pub use topics::{
 pub(crate) mod fixtures {
     //! Messages the conversions' tests share.
 
-    use shroud_msg::{CollisionMessage, GuardVerdict, LinkClearance, SCHEMA_VERSION};
+    use shroud_msg::{CollisionMessage, GuardVerdict, LinkClearance};
 
     /// A clear verdict of arm `arm` with these (link, clearance, unobserved).
     pub fn collision(links: &[(&str, f64, bool)]) -> CollisionMessage {
         CollisionMessage {
-            version: SCHEMA_VERSION,
+            version: CollisionMessage::VERSION,
             joints_stamp_ns: 1,
             joints_sequence: 2,
             arm: "arm".into(),
@@ -60,6 +60,9 @@ pub(crate) mod fixtures {
                 })
                 .collect(),
             check_ns: 900,
+            speed_scale: 1.0,
+            limiting_link: String::new(),
+            protective_distance: 0.05,
         }
     }
 }

@@ -164,6 +164,11 @@ pub const SURROGATE_AGE_MS: Gauge = gauge(
     &[Guard],
     "age of the oldest view behind the latest decision",
 );
+pub const SPEED_SCALE: Gauge = gauge(
+    "speed_scale",
+    &[Guard, Arm],
+    "the latest verdict's speed scale (guard: published; arm: applied), 0 to 1",
+);
 pub const HALTS: Counter = counter("halts", &[Arm], "times the arm halted");
 pub const VERDICTS: Counter = counter(
     "verdicts",
@@ -490,6 +495,7 @@ pub const GAUGES: &[Gauge] = &[
     CHECK_US,
     MIN_CLEARANCE,
     SURROGATE_AGE_MS,
+    SPEED_SCALE,
     TRAJECTORY_S,
     HALTED,
     HALTED_S,

@@ -91,6 +91,15 @@ impl GraphSummary {
                 c.min_clearance,
                 c.closest_link,
             );
+            if !c.stop && c.speed_scale < 1.0 {
+                part += &format!(", {:.0} % speed", 100.0 * c.speed_scale);
+                if !c.limiting_link.is_empty() {
+                    part += &format!(
+                        " ({} at S_p {:.3} m)",
+                        c.limiting_link, c.protective_distance
+                    );
+                }
+            }
             if c.stop && !c.reason.is_empty() {
                 part += &format!(" [{}]", c.reason);
             }
@@ -148,6 +157,23 @@ mod tests {
         let line = g.line(3.0);
         assert!(
             line.contains("fit: 12 out, fit p50 2.50 ms, 2 dropped"),
+            "{line}"
+        );
+    }
+
+    #[test]
+    fn a_scaled_clear_says_how_fast_and_which_link_limits_it() {
+        let mut g = GraphSummary::default();
+        let mut c = shroud_msg::sample_collision(shroud_msg::GuardVerdict::Clear);
+        g.on_collision(c.clone());
+        assert!(!g.line(1.0).contains("% speed"), "{}", g.line(1.0));
+        c.speed_scale = 0.625;
+        c.limiting_link = "forearm".into();
+        c.protective_distance = 0.84;
+        g.on_collision(c);
+        let line = g.line(1.0);
+        assert!(
+            line.contains("CLEAR clearance 0.200 m (wrist), 62 % speed (forearm at S_p 0.840 m)"),
             "{line}"
         );
     }

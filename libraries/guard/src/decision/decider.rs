@@ -2,18 +2,21 @@
 
 use super::combine::{combine, ViewReport};
 use super::policy::{GuardPolicy, UnobservedPolicy};
+use super::speed::SpeedControl;
 use super::view::{check_skew, HeldSurrogate, SurrogateInput, SurrogateRejected};
-use crate::{check_shapes, GuardConfig, GuardError, GuardReport, WorldShape};
-use shroud_msg::{counted_transit, CollisionMessage, GuardVerdict, LinkClearance, SCHEMA_VERSION};
+use crate::{check_shapes, GuardConfig, GuardError, GuardReport, SpeedScale, WorldShape};
+use shroud_msg::{counted_transit, CollisionMessage, GuardVerdict, LinkClearance};
 
 /// The guard's state: per view its latest accepted surrogate.
 #[derive(Debug, Clone)]
 pub struct CollisionGuard {
     views: Vec<String>,
     held: Vec<Option<HeldSurrogate>>,
-    links: Vec<String>,
-    policy: GuardPolicy,
-    config: GuardConfig,
+    pub(super) links: Vec<String>,
+    pub(super) policy: GuardPolicy,
+    pub(super) config: GuardConfig,
+    /// Speed and separation monitoring, when the arm's motion is known.
+    pub(super) speed: Option<SpeedControl>,
 }
 
 /// The verdict for one arm pose, with what it was based on.
@@ -30,6 +33,9 @@ pub struct Decision {
     pub views: usize,
     /// The oldest view used (for `stale`, the newest one held), for the record.
     pub oldest: Option<SurrogateRecord>,
+    /// The speed scale: 1 for `clear` and 0 otherwise from [`CollisionGuard::decide`];
+    /// [`CollisionGuard::decide_moving`] scales it.
+    pub speed: SpeedScale,
 }
 
 /// Which surrogate a decision rests on: its source cloud's stamp (the
@@ -50,7 +56,15 @@ impl Decision {
             report: None,
             views: 0,
             oldest: None,
+            speed: SpeedScale::binary(false, 0.0),
         }
+    }
+
+    /// Turns the decision into a `stop` for `reason`, at scale 0.
+    pub fn stop(&mut self, reason: String) {
+        self.verdict = GuardVerdict::Stop;
+        self.reason = reason;
+        self.speed.scale = 0.0;
     }
 }
 
@@ -95,6 +109,7 @@ impl CollisionGuard {
             links,
             policy,
             config,
+            speed: None,
         })
     }
 
@@ -207,6 +222,7 @@ impl CollisionGuard {
             report: Some(report),
             views: fresh.len(),
             oldest,
+            speed: SpeedScale::binary(verdict == GuardVerdict::Clear, self.config.stop_distance),
         })
     }
 
@@ -273,6 +289,7 @@ impl CollisionGuard {
             report: None,
             views: 0,
             oldest,
+            speed: SpeedScale::binary(false, self.config.stop_distance),
         }
     }
 
@@ -299,7 +316,7 @@ impl CollisionGuard {
             None => (0.0, String::new(), Vec::new(), false),
         };
         CollisionMessage {
-            version: SCHEMA_VERSION,
+            version: CollisionMessage::VERSION,
             joints_stamp_ns,
             joints_sequence,
             arm: arm.to_owned(),
@@ -316,6 +333,17 @@ impl CollisionGuard {
             unobserved,
             links,
             check_ns,
+            speed_scale: decision.speed.scale,
+            limiting_link: decision
+                .speed
+                .limiting_link
+                .and_then(|i| self.links.get(i))
+                .cloned()
+                .unwrap_or_default(),
+            protective_distance: decision
+                .speed
+                .protective_distance
+                .max(self.config.stop_distance),
         }
     }
 

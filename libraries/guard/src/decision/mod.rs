@@ -24,13 +24,17 @@
 //! - obstacles move no faster than [`GuardConfig::max_obstacle_speed`];
 //! - the consumer moves on a verdict no longer than
 //!   [`GuardConfig::horizon`] after sending the joint state it answers (its
-//!   deadman's deadline), and the arm's own motion in that time is covered by
-//!   its stop distance;
+//!   deadman's deadline); with speed monitoring
+//!   ([`CollisionGuard::with_speed_monitor`]) the arm's own motion until it
+//!   has stopped is bounded from its `[motion]` table (`crate::separation`),
+//!   and the arm obeys the scale within its reaction time; without it, that
+//!   motion must be covered by the stop distance;
 //! - the hosts' wall clocks agree within the policy's clock offset bound.
 
 mod combine;
 mod decider;
 mod policy;
+mod speed;
 mod view;
 
 #[cfg(test)]
@@ -38,4 +42,5 @@ mod tests;
 
 pub use decider::{CollisionGuard, Decision, SurrogateRecord};
 pub use policy::{GuardPolicy, UnobservedPolicy};
+pub use speed::JointMotionSample;
 pub use view::{SurrogateInput, SurrogateRejected};

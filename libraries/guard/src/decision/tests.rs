@@ -646,3 +646,102 @@ fn bad_settings_are_refused() {
         Err(SurrogateRejected::UnknownView(3))
     );
 }
+
+/// A guard over the top view of the floor and wall whose "tool" link (a
+/// sphere 0.5 m out on a revolute joint) is speed-monitored: 1 rad/s at
+/// most, braking at 10 rad/s², 50 ms reaction, 0.1 s horizon.
+fn monitored_guard() -> CollisionGuard {
+    use crate::{
+        ArmModel, ArmMotion, Joint, JointKind, JointMotion, Link, SpeedMonitor, StoppingModel,
+    };
+    let arm = ArmModel::new(
+        "arm",
+        glam::DAffine3::IDENTITY,
+        vec![
+            Link {
+                name: "base".into(),
+                shapes: vec![],
+            },
+            Link {
+                name: "tool".into(),
+                shapes: vec![Shape::sphere(DVec3::new(0.5, 0.0, 0.0), 0.05)],
+            },
+        ],
+        vec![Joint::new(
+            "turn",
+            JointKind::Revolute,
+            [0.0, 0.0, 1.0],
+            [0.0; 3],
+            [0.0; 3],
+            None,
+        )
+        .unwrap()],
+    )
+    .unwrap();
+    let motion = ArmMotion {
+        reaction_time: 0.05,
+        position_uncertainty: 0.0,
+        scale_rise_per_second: 1.0,
+        joints: vec![JointMotion {
+            max_velocity: 1.0,
+            stopping: StoppingModel::Deceleration(10.0),
+        }],
+    };
+    let config = GuardConfig {
+        horizon: 0.1,
+        ..config()
+    };
+    let mut g = guard_with(&["top"], GuardPolicy::default(), config)
+        .with_speed_monitor(SpeedMonitor::new(&arm, motion).unwrap());
+    g.accept(0, view(&floor_and_wall(), TOP, 0), 0, WALL)
+        .unwrap();
+    g
+}
+
+#[test]
+fn the_speed_scale_follows_the_separation_and_rises_slowly() {
+    let mut g = monitored_guard();
+    let at = |h: f64| vec![sphere(1, [-0.5, 0.0, h], 0.05)];
+    let still = JointMotionSample::default();
+    // From rest with 0.1 m of clearance: 0.55 (0.1 s + s² / 20) <= 0.1 - 0.05
+    // gives s ~ 0.7.
+    let near = g.decide_moving(&at(0.15), still, 10 * MS).unwrap();
+    assert_eq!(near.verdict, GuardVerdict::Clear, "{}", near.reason);
+    assert!(
+        near.speed.scale > 0.5 && near.speed.scale < 0.75,
+        "{:?}",
+        near.speed
+    );
+    assert_eq!(near.speed.limiting_link, Some(1));
+    // Nearer, while the arm may still run at that scale: it cannot stop in
+    // time, so the guard stops it and says which link and why.
+    let close = g.decide_moving(&at(0.105), still, 20 * MS).unwrap();
+    assert_eq!(
+        (close.verdict, close.speed.scale),
+        (GuardVerdict::Stop, 0.0)
+    );
+    assert!(close.reason.contains("link tool"), "{}", close.reason);
+    // Far: the scale rises by at most 1 per second, then reaches full speed
+    // (the view reports up to what scale 1 needs).
+    let away = g.decide_moving(&at(0.6), still, 120 * MS).unwrap();
+    assert_eq!(away.verdict, GuardVerdict::Clear, "{}", away.reason);
+    assert!((away.speed.scale - 0.1).abs() < 1e-9, "{:?}", away.speed);
+    g.accept(0, view(&floor_and_wall(), TOP, 0), 2 * S, WALL)
+        .unwrap();
+    let far = g.decide_moving(&at(0.6), still, 2 * S).unwrap();
+    assert_eq!((far.verdict, far.speed.scale), (GuardVerdict::Clear, 1.0));
+    assert!(far.speed.limiting_link.is_none());
+    // Right after full speed, the same near pose no longer allows moving:
+    // the arm may still be at full speed.
+    let rushed = g.decide_moving(&at(0.15), still, 2 * S + 10 * MS).unwrap();
+    assert_eq!(rushed.verdict, GuardVerdict::Stop, "{}", rushed.reason);
+    // A joint measured over its limit is not obeying: stop.
+    let fast = [1.2];
+    let sample = JointMotionSample {
+        velocities: Some(&fast),
+        age_ns: 0,
+    };
+    let over = g.decide_moving(&at(0.6), sample, 2 * S + 20 * MS).unwrap();
+    assert_eq!(over.verdict, GuardVerdict::Stop);
+    assert!(over.reason.contains("joint turn"), "{}", over.reason);
+}
