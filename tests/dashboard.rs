@@ -3,13 +3,17 @@
 //! playwright-core (tests/browser/). The page loads without console errors,
 //! draws the cloud and the surfaces, its plots advance, a killed node's row
 //! turns red, a part dragged onto the cloud makes the blend node publish a
-//! composed cloud with transition points, and a stop verdict shows the STOP
-//! banner. Screenshots go to target/tmp/dashboard/<test>/.
+//! composed cloud with transition points, a stop verdict shows the STOP
+//! banner, and a scaled clear verdict moves the speed gauge below 100 %.
+//! Screenshots go to target/tmp/dashboard/<test>/.
 
 mod common;
 
 use common::browser::{browser_available, check, node_dies, out_dir};
 use common::{hub_on_free_port, wait_sources, wiring, Proc};
+use shroud_msg::{sample_collision, GuardVerdict};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::Duration;
 use zenoh::Wait;
 
@@ -178,4 +182,73 @@ fn a_dragged_part_is_blended_and_a_stop_shows_the_banner() {
     );
     let text = banner["text"].as_str().unwrap_or("").to_lowercase();
     assert!(text.contains("stop distance"), "{banner}");
+}
+
+/// The dashboard alone, fed on zenoh the verdict a guard with speed
+/// monitoring publishes when a link's separation slows the arm (a `clear` at
+/// 42 % of the velocity limits, limited by `forearm` at S_p 0.84 m), 20 times
+/// a second: the speed gauge beside the banner shows 42 %, the limiting link
+/// and S_p, with the bar filled to 42 %. (A real guard's scale follows the
+/// arm's motion and the obstacle's: the verdict is published directly so
+/// that the numbers the page must show are known.)
+#[test]
+fn a_scaled_clear_shows_the_speed_gauge_below_full_speed() {
+    if !browser_available() {
+        return;
+    }
+    let (endpoint, hub) = hub_on_free_port();
+    let ns = "e2e-dash-speed";
+    let w = wiring(&endpoint, ns);
+    let (_dashboard, url) = dashboard(&w);
+    let mut verdict = sample_collision(GuardVerdict::Clear);
+    verdict.arm = "demo_arm".into();
+    (
+        verdict.speed_scale,
+        verdict.limiting_link,
+        verdict.protective_distance,
+    ) = (0.42, "forearm".into(), 0.84);
+    let done = Arc::new(AtomicBool::new(false));
+    let stop_publishing = StopOnDrop(done.clone());
+    let guard = {
+        let done = done.clone();
+        let key = format!("shroud/{ns}/collision/demo_arm");
+        std::thread::spawn(move || {
+            while !done.load(Ordering::Relaxed) {
+                verdict.joints_sequence += 1;
+                hub.put(&key, verdict.to_bytes().unwrap()).wait().unwrap();
+                std::thread::sleep(Duration::from_millis(50));
+            }
+        })
+    };
+    let out = out_dir("speed");
+    let gauge = check(
+        &url,
+        &out,
+        "speed_gauge",
+        &["--expect", "limited by forearm (S_p 0.840 m)"],
+    );
+    drop(stop_publishing);
+    guard.join().unwrap();
+    eprintln!("gauge: {gauge}");
+    assert_eq!(gauge["arm"], "demo_arm", "{gauge}");
+    assert_eq!(gauge["scale"].as_f64(), Some(0.42), "{gauge}");
+    let text = gauge["text"].as_str().unwrap_or("");
+    assert!(text.contains("42 % speed"), "{gauge}");
+    let filled = gauge["filled"].as_f64().unwrap_or(-1.0);
+    assert!(
+        (filled - 0.42).abs() < 0.02,
+        "the bar is {filled} full: {gauge}"
+    );
+    // A scaled clear is still a clear: the banner is green.
+    assert_eq!(gauge["banner"], "clear", "{gauge}");
+}
+
+/// Sets its flag when dropped: a publishing thread stops even when the test
+/// fails before it says so.
+struct StopOnDrop(Arc<AtomicBool>);
+
+impl Drop for StopOnDrop {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
 }

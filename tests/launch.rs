@@ -500,11 +500,30 @@ fn the_cell_demo_slows_stops_and_resumes_the_arm_as_the_person_passes() {
         .declare_subscriber("shroud/cell/collision/cell_arm")
         .wait()
         .unwrap();
+    let joints = session
+        .declare_subscriber("shroud/cell/joints/cell_arm")
+        .wait()
+        .unwrap();
     let (mut full, mut scaled, mut stops, mut resumed) = (0, 0, 0, 0);
     let mut limiting = std::collections::BTreeSet::new();
+    // The arm's limits (`arms/cell_arm.toml`): its joint states carry the
+    // velocities it moves at, within them.
+    let limits = [0.8, 0.8, 1.0, 1.5];
+    let (mut states, mut moving) = (0, 0);
     let start = Instant::now();
     while start.elapsed() < Duration::from_secs(17) {
-        let Ok(Some(sample)) = verdicts.recv_timeout(Duration::from_secs(1)) else {
+        // Drained as they come: a full subscriber queue would hold zenoh up.
+        while let Ok(Some(sample)) = joints.try_recv() {
+            let js =
+                shroud_msg::JointStateMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+            assert_eq!(js.velocities.len(), 4, "{js:?}");
+            for (v, limit) in js.velocities.iter().zip(limits) {
+                assert!(v.abs() <= limit + 1e-9, "{js:?}");
+            }
+            states += 1;
+            moving += usize::from(js.velocities.iter().any(|v| *v != 0.0));
+        }
+        let Ok(Some(sample)) = verdicts.recv_timeout(Duration::from_millis(200)) else {
             continue;
         };
         let c = collision(&sample);
@@ -528,7 +547,11 @@ fn the_cell_demo_slows_stops_and_resumes_the_arm_as_the_person_passes() {
         full > 0 && scaled > 0 && stops > 0 && resumed > 0,
         "full {full}, scaled {scaled}, stops {stops}, clears after a stop {resumed}"
     );
-    // A scale limited by separation names the link (a rise-limited one does not).
+    // A scale held down by a link's separation names the link.
     assert!(limiting.iter().any(|l| !l.is_empty()), "{limiting:?}");
+    assert!(
+        states > 0 && moving > 0,
+        "{states} joint states, {moving} moving"
+    );
     drop(launcher);
 }

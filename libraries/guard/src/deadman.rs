@@ -122,7 +122,10 @@ impl Deadman {
     }
 
     /// A verdict arrived for joint state (`sequence`, `stamp_ns`), a `clear`
-    /// at full speed.
+    /// taken at full speed: only for a guard without speed monitoring, whose
+    /// clears are all at scale 1. A consumer of scaled verdicts calls
+    /// [`Self::scaled_verdict`] and moves at [`Self::scale`], never at the
+    /// speed [`Self::motion`] alone would suggest.
     pub fn verdict(&mut self, sequence: u64, stamp_ns: u64, verdict: GuardVerdict) -> VerdictUse {
         self.scaled_verdict(sequence, stamp_ns, verdict, 1.0)
     }

@@ -12,8 +12,8 @@
 use crate::to_foxglove::{
     arm_scene, arm_scene_topic, arm_transforms, arm_transforms_topic, certificate_topic,
     certificate_view, cloud_topic, point_cloud, schema_of, status_topic, status_view,
-    surrogate_scene, surrogate_topic, verdict_topic, verdict_view, vouched_bands, SURFACE_PER_CELL,
-    VERDICT_PERIOD_NS,
+    surrogate_scene, surrogate_topic, verdict_topic, verdict_view, vouched_bands, vouched_speed,
+    SURFACE_PER_CELL, VERDICT_PERIOD_NS,
 };
 use foxglove::{Encode, Schema};
 use shroud_guard::{ArmModel, VerdictWatch};
@@ -209,11 +209,12 @@ impl FoxgloveViews {
             return Ok(Vec::new());
         };
         let posed = pose_arm(model, msg).map_err(|e| e.to_string())?;
-        let bands = vouched_bands(self.watches.get(&msg.arm), log_ns);
+        let watch = self.watches.get(&msg.arm);
+        let (bands, speed) = (vouched_bands(watch, log_ns), vouched_speed(watch, log_ns));
         Ok(vec![
             view(
                 arm_scene_topic(&msg.arm),
-                &arm_scene(&posed, &bands, msg.stamp_ns),
+                &arm_scene(&posed, &bands, &speed, msg.stamp_ns),
             )?,
             view(
                 arm_transforms_topic(&msg.arm),
@@ -283,6 +284,8 @@ mod tests {
         let json =
             |view: &View| -> serde_json::Value { serde_json::from_slice(&view.data).unwrap() };
         assert_eq!(json(&shown[0])["verdict"], "clear");
+        assert_eq!(json(&shown[0])["speed_scale"], 1.0);
+        assert_eq!(json(&shown[0])["speed"], "full speed");
         assert_eq!(shown[0].schema().unwrap().name, "shroud.VerdictView");
         // 0.3 s later the verdict still stands; 0.6 s later it has expired.
         let fresh = v.periodic(1_300_000_000).unwrap();
@@ -290,6 +293,7 @@ mod tests {
         assert!(v.periodic(1_350_000_000).unwrap().is_empty(), "not yet due");
         let silent = v.periodic(1_600_000_000).unwrap();
         assert_eq!(json(&silent[0])["verdict"], "no-verdict");
+        assert_eq!(json(&silent[0])["speed_scale"], 0.0);
         assert_eq!(silent[0].topic, "/shroud/verdict/arm");
     }
 }

@@ -1,18 +1,20 @@
 //! The posed arm as a `foxglove.SceneUpdate` (one entity per link,
 //! `arm/<arm>/<link>`, its spheres and capsules coloured by the link's
-//! clearance band) and its links as `foxglove.FrameTransforms` (each link's
-//! frame `<arm>/<link>` in [`WORLD_FRAME`]). Foxglove has no capsule: each is a
-//! cylinder between its end centres and a sphere at each end.
+//! clearance band, and one entity `arm/<arm>/speed`, a label above the arm
+//! saying how fast the verdict lets it move and which link limits it) and
+//! its links as `foxglove.FrameTransforms` (each link's frame `<arm>/<link>`
+//! in [`WORLD_FRAME`]). Foxglove has no capsule: each is a cylinder between
+//! its end centres and a sphere at each end.
 
 use super::geometry::{color, pose, quaternion, timestamp, vector, WORLD_FRAME};
 use foxglove::messages::{
     CylinderPrimitive, FrameTransform, FrameTransforms, KeyValuePair, SceneEntity, SceneUpdate,
-    SpherePrimitive,
+    SpherePrimitive, TextPrimitive,
 };
 use glam::{DQuat, DVec3};
-use shroud_guard::VerdictWatch;
+use shroud_guard::{ShownVerdict, VerdictWatch};
 use shroud_msg::{CollisionMessage, GuardVerdict};
-use shroud_viewers::scene::{ClearanceBand, PosedArm};
+use shroud_viewers::scene::{ArmSpeed, ClearanceBand, PosedArm, SpeedState};
 use std::collections::BTreeMap;
 
 /// Linear RGBA of a link no verdict speaks for (no guard yet, or a link the
@@ -37,25 +39,69 @@ pub fn vouched_bands(watch: Option<&VerdictWatch>, now_ns: u64) -> BTreeMap<Stri
         .unwrap_or_default()
 }
 
+/// The arm's speed as the verdict `watch` shows at `now_ns` allows
+/// ([`ArmSpeed`]): stopped after a silence or before the first verdict.
+pub fn vouched_speed(watch: Option<&VerdictWatch>, now_ns: u64) -> ArmSpeed {
+    match watch {
+        Some(w) => ArmSpeed::of(&w.shown(now_ns)),
+        None => ArmSpeed::of(&ShownVerdict {
+            verdict: GuardVerdict::NoVerdict,
+            reason: String::new(),
+            message: None,
+            age_ns: None,
+        }),
+    }
+}
+
+/// Linear RGBA of the speed label: the colour of the clear band at full
+/// speed, of the near band when scaled, of the stop band when stopped.
+fn speed_rgba(state: SpeedState) -> [f64; 4] {
+    let band = match state {
+        SpeedState::Full => ClearanceBand::Clear,
+        SpeedState::Scaled => ClearanceBand::Near,
+        SpeedState::Stopped => ClearanceBand::Stop,
+    };
+    let [r, g, b, _] = band.rgba();
+    [r, g, b, 1.0]
+}
+
 /// `arm`'s collision shapes at `stamp_ns`, coloured by `bands` (a link
-/// absent from it is [`NO_VERDICT_RGBA`]).
+/// absent from it is [`NO_VERDICT_RGBA`]), and its speed: a label above the
+/// arm (entity `arm/<arm>/speed`, text `<arm>: <speed.label()>`, with the
+/// scale and limiting link as metadata), and on the link the verdict names
+/// as limiting the scale the metadata `limits_speed` (`62 % (S_p 0.840 m)`;
+/// `0 % (...)` for a stop that names one).
 pub fn arm_scene(
     arm: &PosedArm,
     bands: &BTreeMap<String, ClearanceBand>,
+    speed: &ArmSpeed,
     stamp_ns: u64,
 ) -> SceneUpdate {
+    let limiting = speed
+        .limiting_link
+        .as_deref()
+        .filter(|_| speed.state != SpeedState::Full);
     let mut entities: Vec<(SceneEntity, [f64; 4])> = arm
         .links
         .iter()
         .map(|link| {
             let band = bands.get(&link.name);
-            let metadata = band
+            let mut metadata: Vec<KeyValuePair> = band
                 .map(|b| KeyValuePair {
                     key: "band".into(),
                     value: b.name().into(),
                 })
                 .into_iter()
                 .collect();
+            if limiting == Some(link.name.as_str()) {
+                let sp = speed
+                    .protective_distance
+                    .map_or(String::new(), |sp| format!(" (S_p {sp:.3} m)"));
+                metadata.push(KeyValuePair {
+                    key: "limits_speed".into(),
+                    value: format!("{}{sp}", speed.percent()),
+                });
+            }
             let entity = SceneEntity {
                 timestamp: Some(timestamp(stamp_ns)),
                 frame_id: WORLD_FRAME.into(),
@@ -79,10 +125,57 @@ pub fn arm_scene(
             e.spheres.push(sphere(b, radius, *rgba));
         }
     }
+    let label = speed_label(arm, speed, stamp_ns);
     SceneUpdate {
         deletions: Vec::new(),
-        entities: entities.into_iter().map(|(e, _)| e).collect(),
+        entities: entities.into_iter().map(|(e, _)| e).chain(label).collect(),
     }
+}
+
+/// The entity `arm/<arm>/speed`: the speed's label 0.15 m above the arm's
+/// highest shape, over its first link's origin, facing the camera at a
+/// fixed size on screen. None for an arm without links.
+fn speed_label(arm: &PosedArm, speed: &ArmSpeed, stamp_ns: u64) -> Option<SceneEntity> {
+    let base = arm.links.first()?.origin;
+    let tops = arm
+        .spheres()
+        .map(|(_, c, r)| c.z + r)
+        .chain(arm.capsules().map(|(_, a, b, r)| a.z.max(b.z) + r))
+        .chain(arm.links.iter().map(|l| l.origin.z));
+    let top = tops.fold(base.z, f64::max);
+    let text = TextPrimitive {
+        pose: Some(pose(
+            DVec3::new(base.x, base.y, top + 0.15),
+            DQuat::IDENTITY,
+        )),
+        billboard: true,
+        font_size: 14.0,
+        scale_invariant: true,
+        color: Some(color(speed_rgba(speed.state))),
+        text: format!("{}: {}", arm.arm, speed.label()),
+    };
+    let pair = |key: &str, value: String| KeyValuePair {
+        key: key.into(),
+        value,
+    };
+    let mut metadata = vec![
+        pair("speed_scale", speed.scale.to_string()),
+        pair("speed", speed.state.name().into()),
+    ];
+    if let Some(link) = &speed.limiting_link {
+        metadata.push(pair("limiting_link", link.clone()));
+    }
+    if let Some(sp) = speed.protective_distance {
+        metadata.push(pair("protective_distance", format!("{sp:.3}")));
+    }
+    Some(SceneEntity {
+        timestamp: Some(timestamp(stamp_ns)),
+        frame_id: WORLD_FRAME.into(),
+        id: format!("arm/{}/speed", arm.arm),
+        metadata,
+        texts: vec![text],
+        ..Default::default()
+    })
 }
 
 fn sphere(centre: DVec3, radius: f64, rgba: [f64; 4]) -> SpherePrimitive {
@@ -167,9 +260,9 @@ axis = [0.0, 0.0, 1.0]
     fn a_capsule_is_a_cylinder_between_two_spheres_coloured_by_band() {
         let arm = posed();
         let bands = BTreeMap::from([("tip".to_string(), ClearanceBand::Near)]);
-        let update = arm_scene(&arm, &bands, 3);
+        let update = arm_scene(&arm, &bands, &vouched_speed(None, 0), 3);
         let ids: Vec<&str> = update.entities.iter().map(|e| e.id.as_str()).collect();
-        assert_eq!(ids, ["arm/two/base", "arm/two/tip"]);
+        assert_eq!(ids, ["arm/two/base", "arm/two/tip", "arm/two/speed"]);
         let (base, tip) = (&update.entities[0], &update.entities[1]);
         assert_eq!((base.spheres.len(), base.cylinders.len()), (1, 0));
         assert_eq!(rgba(&base.spheres[0].color), NO_VERDICT_RGBA);
@@ -217,5 +310,53 @@ axis = [0.0, 0.0, 1.0]
         let bands = link_bands(&msg);
         assert_eq!(bands["base"], ClearanceBand::Stop);
         assert_eq!(bands["tip"], ClearanceBand::Unobserved);
+    }
+
+    fn metadata(entity: &SceneEntity) -> BTreeMap<&str, &str> {
+        entity
+            .metadata
+            .iter()
+            .map(|kv| (kv.key.as_str(), kv.value.as_str()))
+            .collect()
+    }
+
+    #[test]
+    fn the_speed_label_says_the_scale_and_marks_the_limiting_link() {
+        let arm = posed();
+        let mut watch = VerdictWatch::new(1_000);
+        let mut msg =
+            crate::to_foxglove::fixtures::collision(&[("base", 1.0, false), ("tip", 0.4, false)]);
+        (msg.speed_scale, msg.limiting_link, msg.protective_distance) = (0.625, "tip".into(), 0.84);
+        watch.on_verdict(msg, 0);
+        let speed = vouched_speed(Some(&watch), 10);
+        let update = arm_scene(&arm, &vouched_bands(Some(&watch), 10), &speed, 3);
+        let label = update.entities.last().unwrap();
+        assert_eq!(label.id, "arm/two/speed");
+        let text = &label.texts[0];
+        assert_eq!(text.text, "two: 62 % speed, limited by tip (S_p 0.840 m)");
+        assert!(text.billboard && text.scale_invariant);
+        assert_eq!(rgba(&text.color), speed_rgba(SpeedState::Scaled));
+        // Above the highest shape: the tip's capsule at height 1, radius 0.05.
+        let at = text.pose.unwrap().position.unwrap();
+        assert!((at.z - 1.2).abs() < 1e-12, "{at:?}");
+        let meta = metadata(label);
+        assert_eq!(meta["speed_scale"], "0.625");
+        assert_eq!(meta["speed"], "scaled");
+        assert_eq!(meta["limiting_link"], "tip");
+        assert_eq!(meta["protective_distance"], "0.840");
+        let (base, tip) = (&update.entities[0], &update.entities[1]);
+        assert_eq!(metadata(tip)["limits_speed"], "62 % (S_p 0.840 m)");
+        assert!(!metadata(base).contains_key("limits_speed"));
+        // A silent guard: stopped, in the stop band's colour, naming nothing.
+        let silent = vouched_speed(Some(&watch), 5_000);
+        let update = arm_scene(&arm, &BTreeMap::new(), &silent, 3);
+        let label = update.entities.last().unwrap();
+        assert_eq!(label.texts[0].text, "two: stopped (no-verdict)");
+        assert_eq!(rgba(&label.texts[0].color), speed_rgba(SpeedState::Stopped));
+        assert!(!metadata(label).contains_key("limiting_link"));
+        assert!(update
+            .entities
+            .iter()
+            .all(|e| !metadata(e).contains_key("limits_speed")));
     }
 }

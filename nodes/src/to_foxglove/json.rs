@@ -9,7 +9,7 @@ use serde::Serialize;
 use shroud_guard::ShownVerdict;
 use shroud_msg::{GuardVerdict, NodeStatusMessage, SurrogateMessage};
 use shroud_surrogate::{Certificate, Side};
-use shroud_viewers::scene::ClearanceBand;
+use shroud_viewers::scene::{ArmSpeed, ClearanceBand};
 use std::collections::BTreeMap;
 
 /// What an arm's guard says, as a viewer shows it (a silent guard is
@@ -29,6 +29,22 @@ pub struct VerdictView {
     pub stop_distance: Option<f64>,
     pub surrogate_age_ms: Option<f64>,
     pub joints_sequence: Option<u64>,
+    /// The fraction, in [0, 1], of each joint's velocity limit the verdict
+    /// lets the arm move at: the guard's `speed_scale` for a `clear`, 0 for
+    /// every other verdict (`no-verdict` included).
+    pub speed_scale: f64,
+    /// `full`, `scaled` or `stopped`.
+    pub speed_state: String,
+    /// One line: `full speed`, `62 % speed, limited by forearm (S_p 0.840
+    /// m)`, `stopped (stop)`.
+    pub speed: String,
+    /// The link whose separation limits the scale; null when the verdict
+    /// names none or is `no-verdict`.
+    pub limiting_link: Option<String>,
+    /// Metres: the verdict's protective separation distance `S_p` (the
+    /// limiting link's at the scale, else the stop distance); null for
+    /// `no-verdict`.
+    pub protective_distance: Option<f64>,
     pub links: Vec<LinkView>,
 }
 
@@ -49,6 +65,7 @@ pub const VERDICT_PERIOD_NS: u64 = 100_000_000;
 /// The verdict shown for `arm`.
 pub fn verdict_view(arm: &str, shown: &ShownVerdict<'_>) -> VerdictView {
     let msg = shown.message;
+    let speed = ArmSpeed::of(shown);
     VerdictView {
         arm: arm.into(),
         verdict: shown.verdict.name().into(),
@@ -60,6 +77,11 @@ pub fn verdict_view(arm: &str, shown: &ShownVerdict<'_>) -> VerdictView {
         stop_distance: msg.map(|m| m.stop_distance),
         surrogate_age_ms: msg.map(|m| m.surrogate_age_ns as f64 / 1e6),
         joints_sequence: msg.map(|m| m.joints_sequence),
+        speed_scale: speed.scale,
+        speed_state: speed.state.name().into(),
+        speed: speed.label(),
+        limiting_link: speed.limiting_link,
+        protective_distance: speed.protective_distance,
         links: msg
             .map(|m| {
                 m.links
@@ -203,6 +225,38 @@ mod tests {
         let json = serde_json::to_value(&shown).unwrap();
         assert_eq!(json["links"][1]["clearance"], serde_json::Value::Null);
         assert_eq!(json["min_clearance"], 0.02);
+        assert_eq!(
+            (json["speed_scale"].as_f64(), json["speed_state"].as_str()),
+            (Some(0.0), Some("stopped"))
+        );
+        assert_eq!(empty.speed, "stopped (no-verdict)");
+    }
+
+    #[test]
+    fn a_scaled_verdict_shows_its_scale_limiting_link_and_protective_distance() {
+        let mut watch = VerdictWatch::new(1_000);
+        let mut msg = collision(&[("forearm", 0.9, false)]);
+        (msg.speed_scale, msg.limiting_link, msg.protective_distance) =
+            (0.625, "forearm".into(), 0.84);
+        watch.on_verdict(msg, 0);
+        let json = serde_json::to_value(verdict_view("arm", &watch.shown(10))).unwrap();
+        assert_eq!(json["speed_scale"], 0.625);
+        assert_eq!(json["speed_state"], "scaled");
+        assert_eq!(
+            json["speed"],
+            "62 % speed, limited by forearm (S_p 0.840 m)"
+        );
+        assert_eq!(json["limiting_link"], "forearm");
+        assert_eq!(json["protective_distance"], 0.84);
+        // Silent, the guard's last numbers are gone and the arm is stopped.
+        let json = serde_json::to_value(verdict_view("arm", &watch.shown(5_000))).unwrap();
+        assert_eq!(
+            (json["verdict"].as_str(), json["speed_scale"].as_f64()),
+            (Some("no-verdict"), Some(0.0))
+        );
+        assert_eq!(json["limiting_link"], serde_json::Value::Null);
+        assert_eq!(json["protective_distance"], serde_json::Value::Null);
+        assert_eq!(json["speed"], "stopped (no-verdict)");
     }
 
     #[test]
@@ -240,6 +294,15 @@ mod tests {
     fn every_view_has_a_json_schema_naming_its_fields() {
         let schema = serde_json::to_value(schemars::schema_for!(VerdictView)).unwrap();
         assert!(schema["properties"]["min_clearance"].is_object());
+        for field in [
+            "speed_scale",
+            "speed_state",
+            "speed",
+            "limiting_link",
+            "protective_distance",
+        ] {
+            assert!(schema["properties"][field].is_object(), "{field}");
+        }
         let schema = serde_json::to_value(schemars::schema_for!(CertificateView)).unwrap();
         assert!(schema["properties"]["upper"].is_object());
         let schema = serde_json::to_value(schemars::schema_for!(StatusView)).unwrap();

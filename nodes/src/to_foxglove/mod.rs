@@ -13,7 +13,9 @@ mod schema;
 mod surrogate;
 mod topics;
 
-pub use arm::{arm_scene, arm_transforms, link_bands, vouched_bands, NO_VERDICT_RGBA};
+pub use arm::{
+    arm_scene, arm_transforms, link_bands, vouched_bands, vouched_speed, NO_VERDICT_RGBA,
+};
 pub use cloud::point_cloud;
 pub use geometry::{timestamp, WORLD_FRAME};
 pub use json::{

@@ -9,7 +9,7 @@ const OPTIONS = {
   check: { required: true, help: 'the check to run' },
   node: { help: 'node_dies: the node whose row must turn red' },
   'killed-at-ms': { number: true, help: 'node_dies: when the node was killed (ms since the Unix epoch); without it the check waits for the row to be alive, prints "ready" on stderr and reads that time from stdin' },
-  expect: { help: 'stop_banner: text the banner must contain' },
+  expect: { help: 'stop_banner, speed_gauge: text the banner, or the gauge\'s row, must contain' },
   plots: { default: 'rates,drops', help: 'plots: the plots that must advance (fit, latency, clearance, rates, drops)' },
   'timeout-ms': { number: true, default: 30000, help: 'how long any one wait may take' },
   chromium: { default: process.env.SHROUD_CHROMIUM || '/usr/bin/chromium', help: 'the Chromium binary' },

@@ -16,7 +16,7 @@ const u32 = (values) => new Uint32Array(values);
 
 // One valid frame of each message type the page reads.
 const EXAMPLES = {
-  hello: () => encodeFrame({ type: 'hello', protocol: 1, namespace: 'demo', node: 'dashboard', point_budget: 60000,
+  hello: () => encodeFrame({ type: 'hello', protocol: 2, namespace: 'demo', node: 'dashboard', point_budget: 60000,
     blend: { stream: 'blend', parts: ['hemisphere', 'half-cylinder'] }, arms: ['demo_arm'], stop_banner_after_ms: 500 }),
   cloud: () => encodeFrame({ type: 'cloud', stream: 'spheres', sequence: 4, age_ms: 3.1, points_total: 9, points_sent: 3,
     intensity: true, blend_sources: true }, [['positions', 'f32', f32([0, 0, 0, 1, 1, 1, 2, 2, 2])], ['intensity', 'f32', f32([0, 1, 2])]]),
@@ -29,13 +29,20 @@ const EXAMPLES = {
     ['link_origins', 'f32', f32([0, 0, 0, 0, 0, 1])], ['spheres', 'f32', f32([0, 0, 0, 0.1])], ['sphere_links', 'u32', u32([0])],
     ['capsules', 'f32', f32([0, 0, 0, 0, 0, 1, 0.05])], ['capsule_links', 'u32', u32([1])]]),
   verdict: () => encodeFrame({ type: 'verdict', arm: 'demo_arm', verdict: 'stop', stop: true, reason: 'link tip at 0.000 m',
-    min_clearance: 0, closest_link: 'tip', stop_distance: 0.05, links: [{ link: 'tip', clearance: 0, unobserved: false, band: 'stop' }] }),
+    min_clearance: 0, closest_link: 'tip', stop_distance: 0.05, speed_scale: 0, limiting_link: 'tip', protective_distance: 0.14,
+    links: [{ link: 'tip', clearance: 0, unobserved: false, band: 'stop' }] }),
+  'verdict (scaled clear)': () => encodeFrame({ type: 'verdict', arm: 'demo_arm', verdict: 'clear', stop: false, reason: '',
+    min_clearance: 0.6, closest_link: 'base', stop_distance: 0.05, speed_scale: 0.42, limiting_link: 'forearm',
+    protective_distance: 0.84, links: [{ link: 'forearm', clearance: 0.9, unobserved: false, band: 'clear' }] }),
   nodes: () => encodeFrame({ type: 'nodes', uptime_s: 1, nodes: [{ name: 'fit', kind: 'fit', state: 'alive', pid: 7, uptime_s: 1,
     status_age_s: 0.2, restarts: 0, counters: { received: 3, dropped_backlog: 1 }, gauges: { fit_p50_ms: 2.1 } }],
   topics: [{ topic: 'cloud/spheres', rate_hz: 10 }], dashboard: { clients: 1 } }),
   blend_result: () => encodeFrame({ type: 'blend_result', id: 7, ok: false, error: 'the drop point is off the surface' }),
   error: () => encodeFrame({ type: 'error', message: 'not JSON' }),
 };
+
+// The message type of an example: its name up to the first space ("verdict (scaled clear)").
+const typeOf = (name) => name.split(' ')[0];
 
 // Decodes and reads; returns the message, or the FrameError. Anything else thrown fails the test.
 function readOrRefuse(buffer, context) {
@@ -51,7 +58,7 @@ test('every example message reads', () => {
   for (const [type, make] of Object.entries(EXAMPLES)) {
     const read = readOrRefuse(make(), type);
     assert.ok(!(read instanceof FrameError), `${type}: ${read.message}`);
-    assert.equal(read.type, type);
+    assert.equal(read.type, typeOf(type));
   }
   const cloud = readMessage(decodeFrame(EXAMPLES.cloud())).message;
   assert.deepEqual([...cloud.positions], [0, 0, 0, 1, 1, 1, 2, 2, 2]);
@@ -108,7 +115,7 @@ test('mistyped fields are refused naming the field, or ignored when the page doe
     for (const field of Object.keys(header).filter((name) => name !== 'arrays' && name !== 'type')) {
       for (const value of wrong) {
         const read = readOrRefuse(encodeFrame({ ...header, [field]: value }, arrayList), `${type}.${field} = ${JSON.stringify(value)}`);
-        if (read instanceof FrameError) assert.match(read.message, new RegExp(`${type}|${field}`), read.message);
+        if (read instanceof FrameError) assert.match(read.message, new RegExp(`${typeOf(type)}|${field}`), read.message);
       }
     }
   }
@@ -120,7 +127,7 @@ test('a wrongly typed field names itself', () => {
     [{ type: 'cloud', stream: 's' }, [['positions', 'f32', f32([0, 0])]], /"positions" has 2 elements, not a multiple of 3/],
     [{ type: 'cloud', stream: 's' }, [['positions', 'u32', u32([0, 0, 0])]], /"positions" is u32, not f32/],
     [{ type: 'cloud', stream: 's', intensity: true }, [['positions', 'f32', f32([0, 0, 0])]], /array "intensity" is missing/],
-    [{ type: 'verdict', arm: 'a', verdict: 'clear', links: [{ link: 3 }] }, [], /verdict links\[0\]: field "link" is not a string/],
+    [{ type: 'verdict', arm: 'a', verdict: 'clear', speed_scale: 1, links: [{ link: 3 }] }, [], /verdict links\[0\]: field "link" is not a string/],
     [{ type: 'nodes', nodes: [{ name: 'fit', pid: 'x' }] }, [], /nodes nodes\[0\]: field "pid"/],
     [{ type: 'smooth', stream: 's' }, [['positions', 'f32', f32([0, 0, 0])], ['indices', 'u32', u32([0, 0, 1])]], /"indices"\[2\] = 1 is not below 1/],
     [{ type: 'arm', arm: 'a', links: ['one'] }, [['spheres', 'f32', f32([0, 0, 0, 1])], ['sphere_links', 'u32', u32([1])]], /"sphere_links"\[0\] = 1 is not below 1/],
@@ -161,5 +168,39 @@ test('a verdict the page does not know, or a clear that says stop, is not clear'
   const verdict = (fields) => readMessage(decodeFrame(encodeFrame({ type: 'verdict', arm: 'a', ...fields }))).message;
   assert.equal(verdict({ verdict: 'maybe', stop: false }).stop, true);
   assert.equal(verdict({ verdict: 'clear', stop: true }).stop, true);
-  assert.equal(verdict({ verdict: 'clear' }).stop, false);
+  assert.equal(verdict({ verdict: 'clear', speed_scale: 1 }).stop, false);
+});
+
+test('a verdict carries its speed scale, the link that limits it and its S_p', () => {
+  const scaled = readMessage(decodeFrame(EXAMPLES['verdict (scaled clear)']())).message;
+  assert.deepEqual([scaled.stop, scaled.speedScale, scaled.limitingLink, scaled.protectiveDistance], [false, 0.42, 'forearm', 0.84]);
+  const stop = readMessage(decodeFrame(EXAMPLES.verdict())).message;
+  assert.deepEqual([stop.stop, stop.speedScale, stop.limitingLink], [true, 0, 'tip']);
+  // A stop without the fields moves at 0; a silent guard's numbers travel as null.
+  const verdict = (fields) => readMessage(decodeFrame(encodeFrame({ type: 'verdict', arm: 'a', ...fields }))).message;
+  const bare = verdict({ verdict: 'no-verdict', stop: true, limiting_link: null, protective_distance: null });
+  assert.deepEqual([bare.speedScale, bare.limitingLink, bare.protectiveDistance], [0, '', null]);
+  assert.equal(verdict({ verdict: 'clear', speed_scale: 1 }).speedScale, 1);
+  assert.equal(verdict({ verdict: 'clear', speed_scale: Number.MIN_VALUE }).speedScale, Number.MIN_VALUE);
+});
+
+test('a speed scale out of range or against its verdict, or a negative S_p, is refused by name', () => {
+  const cases = [
+    [{ verdict: 'clear' }, /verdict: field "speed_scale" is missing/],
+    [{ verdict: 'clear', speed_scale: null }, /verdict: field "speed_scale" is missing/],
+    [{ verdict: 'clear', speed_scale: 0 }, /verdict: field "speed_scale" is 0, not in \(0, 1\] for a clear/],
+    [{ verdict: 'clear', speed_scale: 1.5 }, /verdict: field "speed_scale" is 1.5, not in \(0, 1\] for a clear/],
+    [{ verdict: 'clear', speed_scale: -0.25 }, /field "speed_scale" is -0.25/],
+    [{ verdict: 'clear', speed_scale: '0.5' }, /verdict: field "speed_scale" is "0.5", not a finite number/],
+    [{ verdict: 'stop', stop: true, speed_scale: 0.5 }, /verdict: field "speed_scale" is 0.5 with a stop, not 0/],
+    [{ verdict: 'clear', stop: true, speed_scale: 1 }, /field "speed_scale" is 1 with a stop/],
+    [{ verdict: 'stale', speed_scale: -1 }, /field "speed_scale" is -1 with a stop/],
+    [{ verdict: 'clear', speed_scale: 0.5, protective_distance: -0.01 }, /verdict: field "protective_distance" is -0.01, not a distance >= 0/],
+    [{ verdict: 'clear', speed_scale: 0.5, limiting_link: 3 }, /verdict: field "limiting_link" is not a string/],
+  ];
+  for (const [fields, expected] of cases) {
+    const read = readOrRefuse(encodeFrame({ type: 'verdict', arm: 'a', ...fields }), JSON.stringify(fields));
+    assert.ok(read instanceof FrameError, `${JSON.stringify(fields)} was accepted`);
+    assert.match(read.message, expected);
+  }
 });

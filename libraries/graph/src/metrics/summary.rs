@@ -92,7 +92,9 @@ impl GraphSummary {
                 c.closest_link,
             );
             if !c.stop && c.speed_scale < 1.0 {
-                part += &format!(", {:.0} % speed", 100.0 * c.speed_scale);
+                // Rounded down, as the viewers do: a slowed arm never reads 100 %.
+                let percent = (100.0 * c.speed_scale).floor().clamp(0.0, 99.0);
+                part += &format!(", {percent:.0} % speed");
                 if !c.limiting_link.is_empty() {
                     part += &format!(
                         " ({} at S_p {:.3} m)",

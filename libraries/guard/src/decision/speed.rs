@@ -38,6 +38,7 @@ impl CollisionGuard {
             monitor.motion().scale_rise_per_second,
             monitor.window(self.config.horizon),
         );
+        debug_assert_eq!(monitor.links(), self.links.len());
         self.speed = Some(SpeedControl { monitor, governor });
         self
     }
@@ -78,9 +79,11 @@ impl CollisionGuard {
 
     /// [`Self::decide`], then the speed scale: without a monitor, 1 for
     /// `clear` and 0 otherwise; with one, the largest scale every link
-    /// allows after the rise limit, and `stop` where it is 0 or where a
-    /// joint is measured over its velocity limit. Every call is taken as
-    /// published: its scale governs the arm from now on.
+    /// allows after the rise limit, and `stop` where it is 0, where a joint
+    /// is measured over its velocity limit, or where the joint state is
+    /// older than the horizon (no verdict on it may move the arm, and the
+    /// scale in force is looked up over a window that assumes so). Every
+    /// call is taken as published: its scale governs the arm from now on.
     pub fn decide_moving(
         &mut self,
         shapes: &[WorldShape],
@@ -95,13 +98,25 @@ impl CollisionGuard {
                 SpeedScale::binary(decision.verdict == GuardVerdict::Clear, stop_distance);
             return Ok(decision);
         };
+        let age = joints.age_ns as f64 * 1e-9;
         let in_force = control.governor.in_force(now_ns);
-        let target = match control.monitor.current_speeds(joints.velocities, in_force) {
+        let speeds = control.monitor.current_speeds(joints.velocities, in_force);
+        let clear = decision.verdict == GuardVerdict::Clear;
+        let now = |speeds| MotionNow {
+            speeds,
+            joint_state_age: age,
+        };
+        let target = match (&speeds, &decision.report) {
             // Another verdict already stops the arm and says why.
-            Err(_) if decision.verdict != GuardVerdict::Clear => {
+            _ if !clear => SpeedScale::binary(false, stop_distance),
+            _ if age > timing.horizon => {
+                decision.stop(format!(
+                    "joint state {age:.3} s old, beyond the horizon {:.3} s: no verdict on it may move the arm",
+                    timing.horizon
+                ));
                 SpeedScale::binary(false, stop_distance)
             }
-            Err(over) => {
+            (Err(over), _) => {
                 let name = control.monitor.joint_name(over.joint);
                 decision.stop(format!(
                     "joint {name} moves at {:.3}, over its velocity limit {:.3}",
@@ -109,32 +124,38 @@ impl CollisionGuard {
                 ));
                 SpeedScale::binary(false, stop_distance)
             }
-            Ok(speeds) => match &decision.report {
-                Some(report) if decision.verdict == GuardVerdict::Clear => {
-                    let now = MotionNow {
-                        speeds: &speeds,
-                        joint_state_age: joints.age_ns as f64 * 1e-9,
-                    };
-                    control
-                        .monitor
-                        .scale(&report.links, stop_distance, &now, &timing)
-                }
-                _ => SpeedScale::binary(false, stop_distance),
-            },
+            (Ok(speeds), Some(report)) => {
+                control
+                    .monitor
+                    .scale(&report.links, stop_distance, &now(speeds), &timing)
+            }
+            (Ok(_), None) => SpeedScale::binary(false, stop_distance),
         };
         let scale = control.governor.publish(target.scale, now_ns);
-        decision.speed = SpeedScale { scale, ..target };
+        decision.speed = match (&speeds, &decision.report) {
+            // Held below the target by the rise limit: what the published
+            // scale needs (it is feasible, S_p growing with the scale), and
+            // no link limits it.
+            (Ok(speeds), Some(report)) if scale < target.scale => SpeedScale {
+                scale,
+                limiting_link: None,
+                protective_distance: control.monitor.needed_at(
+                    &report.links,
+                    stop_distance,
+                    &now(speeds),
+                    &timing,
+                    scale,
+                ),
+            },
+            _ => SpeedScale { scale, ..target },
+        };
         if decision.verdict == GuardVerdict::Clear && scale == 0.0 && target.scale > 0.0 {
             decision.stop(format!(
                 "the speed scale rises at most {}/s from a stop",
                 control.monitor.motion().scale_rise_per_second
             ));
         } else if decision.verdict == GuardVerdict::Clear && scale == 0.0 {
-            let link = |i: Option<usize>| {
-                i.and_then(|i| self.links.get(i))
-                    .map_or("?", String::as_str)
-                    .to_owned()
-            };
+            let link = target.limiting_link.and_then(|i| self.links.get(i));
             let clearance = decision
                 .report
                 .as_ref()
@@ -142,8 +163,8 @@ impl CollisionGuard {
                 .copied()
                 .unwrap_or(0.0);
             decision.stop(format!(
-                "link {} at {clearance:.3} m needs {:.3} m to stop (reaction, braking and the obstacle's approach meanwhile)",
-                link(target.limiting_link),
+                "link {} at {clearance:.3} m is within its protective separation distance {:.3} m (reaction, braking and the obstacle's approach meanwhile)",
+                link.map_or("?", String::as_str),
                 target.protective_distance
             ));
         }

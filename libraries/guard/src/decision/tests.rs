@@ -703,9 +703,16 @@ fn the_speed_scale_follows_the_separation_and_rises_slowly() {
     let mut g = monitored_guard();
     let at = |h: f64| vec![sphere(1, [-0.5, 0.0, h], 0.05)];
     let still = JointMotionSample::default();
-    // From rest with 0.1 m of clearance: 0.55 (0.1 s + s² / 20) <= 0.1 - 0.05
-    // gives s ~ 0.7.
-    let near = g.decide_moving(&at(0.15), still, 10 * MS).unwrap();
+    // Just started, the guard takes full speed as in force (an earlier
+    // guard may have allowed it): far away, that still allows full speed.
+    let first = g.decide_moving(&at(0.6), still, 0).unwrap();
+    assert_eq!(
+        (first.verdict, first.speed.scale),
+        (GuardVerdict::Clear, 1.0)
+    );
+    // From rest (once that full speed is out of the window, 0.355 s) with
+    // 0.1 m of clearance: 0.55 (0.1 s + s² / 20) <= 0.1 - 0.05 gives s ~ 0.7.
+    let near = g.decide_moving(&at(0.15), still, 400 * MS).unwrap();
     assert_eq!(near.verdict, GuardVerdict::Clear, "{}", near.reason);
     assert!(
         near.speed.scale > 0.5 && near.speed.scale < 0.75,
@@ -715,7 +722,7 @@ fn the_speed_scale_follows_the_separation_and_rises_slowly() {
     assert_eq!(near.speed.limiting_link, Some(1));
     // Nearer, while the arm may still run at that scale: it cannot stop in
     // time, so the guard stops it and says which link and why.
-    let close = g.decide_moving(&at(0.105), still, 20 * MS).unwrap();
+    let close = g.decide_moving(&at(0.105), still, 410 * MS).unwrap();
     assert_eq!(
         (close.verdict, close.speed.scale),
         (GuardVerdict::Stop, 0.0)
@@ -723,7 +730,7 @@ fn the_speed_scale_follows_the_separation_and_rises_slowly() {
     assert!(close.reason.contains("link tool"), "{}", close.reason);
     // Far: the scale rises by at most 1 per second, then reaches full speed
     // (the view reports up to what scale 1 needs).
-    let away = g.decide_moving(&at(0.6), still, 120 * MS).unwrap();
+    let away = g.decide_moving(&at(0.6), still, 510 * MS).unwrap();
     assert_eq!(away.verdict, GuardVerdict::Clear, "{}", away.reason);
     assert!((away.speed.scale - 0.1).abs() < 1e-9, "{:?}", away.speed);
     g.accept(0, view(&floor_and_wall(), TOP, 0), 2 * S, WALL)

@@ -101,3 +101,88 @@ impl RawMotion {
         Ok(motion)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::ArmFile;
+
+    const ARM: &str = r#"
+        [[links]]
+        name = "base"
+        [[links]]
+        name = "upper"
+        spheres = [{ centre = [0.3, 0.0, 0.0], radius = 0.05 }]
+        [[links]]
+        name = "tip"
+        [[joints]]
+        name = "turn"
+        kind = "revolute"
+        axis = [0.0, 0.0, 1.0]
+        [[joints]]
+        name = "mount"
+        kind = "fixed"
+    "#;
+
+    fn with_motion(motion: &str) -> Result<ArmFile, String> {
+        ArmFile::from_toml_str(&format!("{ARM}\n[motion]\n{motion}")).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn a_motion_table_is_read_per_actuated_joint() {
+        let file = with_motion(
+            r#"reaction_time = 0.1
+            joints = [{ name = "turn", max_velocity = 2.0, stopping = [[0.5, 0.1, 0.1], [1.0, 0.3, 0.2]] }]"#,
+        )
+        .unwrap();
+        let motion = file.motion.unwrap();
+        assert_eq!(motion.joints.len(), 1);
+        assert_eq!(
+            (motion.position_uncertainty, motion.scale_rise_per_second),
+            (0.0, 1.0)
+        );
+        assert!(ArmFile::from_toml_str(ARM).unwrap().motion.is_none());
+    }
+
+    #[test]
+    fn bad_motion_tables_are_refused_by_name() {
+        let refused = |m: &str| with_motion(m).unwrap_err();
+        let joint = |j: &str| format!("reaction_time = 0.1\njoints = [{j}]");
+        assert!(refused(&joint(
+            r#"{ name = "mount", max_velocity = 1.0, deceleration = 1.0 }"#
+        ))
+        .contains("'mount' is not an actuated joint"));
+        assert!(refused("reaction_time = 0.1\njoints = []").contains("'turn' has no entry"));
+        assert!(refused(&joint(
+            r#"{ name = "turn", max_velocity = 1.0, deceleration = 1.0 }, { name = "turn", max_velocity = 1.0, deceleration = 1.0 }"#
+        ))
+        .contains("given twice"));
+        assert!(refused(&joint(r#"{ name = "turn", max_velocity = 1.0 }"#))
+            .contains("exactly one of deceleration and stopping"));
+        assert!(refused(&joint(
+            r#"{ name = "turn", max_velocity = 1.0, deceleration = 1.0, stopping = [[1.0, 0.1, 0.1]] }"#
+        ))
+        .contains("exactly one"));
+        assert!(refused(&joint(
+            r#"{ name = "turn", max_velocity = -1.0, deceleration = 1.0 }"#
+        ))
+        .contains("max_velocity"));
+        assert!(refused(&joint(
+            r#"{ name = "turn", max_velocity = 1.0, deceleration = 1.0, typo = 1 }"#
+        ))
+        .contains("typo"));
+        assert!(
+            refused(r#"joints = [{ name = "turn", max_velocity = 1.0, deceleration = 1.0 }]"#)
+                .contains("reaction_time")
+        );
+    }
+
+    #[test]
+    fn a_trajectory_faster_than_the_limits_is_refused() {
+        let file = format!(
+            "{ARM}\n[trajectory]\nwaypoints = [{{ positions = [0.0], duration = 1.0 }}, {{ positions = [1.0], duration = 1.0 }}]\n\
+             [motion]\nreaction_time = 0.1\njoints = [{{ name = \"turn\", max_velocity = 1.0, deceleration = 4.0 }}]"
+        );
+        let e = ArmFile::from_toml_str(&file).unwrap_err().to_string();
+        assert!(e.contains("moves joint 'turn' at up to 1.571"), "{e}");
+    }
+}

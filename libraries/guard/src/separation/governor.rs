@@ -17,24 +17,37 @@ pub struct ScaleGovernor {
     /// in the window is the front once older entries are dropped.
     in_window: VecDeque<(u64, f64)>,
     last: Option<(u64, f64)>,
+    /// Whether the first query took full speed as in force.
+    primed: bool,
 }
 
 impl ScaleGovernor {
     /// `window` (seconds): how long after its publication a verdict's scale
-    /// can still drive the arm (the horizon, the reaction time and the
-    /// longest stop).
+    /// can still drive the arm ([`super::SpeedMonitor::window`]); a window
+    /// that is not a number keeps every scale for ever.
     pub fn new(rise_per_second: f64, window: f64) -> Self {
         Self {
             rise_per_second,
-            window_ns: (window.max(0.0) * 1e9).ceil() as u64,
+            window_ns: if window.is_nan() {
+                u64::MAX
+            } else {
+                (window.max(0.0) * 1e9).ceil() as u64
+            },
             in_window: VecDeque::new(),
             last: None,
+            primed: false,
         }
     }
 
     /// The largest scale published within the window before `now_ns` (0 when
-    /// none: the arm moves only on a fresh `clear`).
+    /// none: the arm moves only on a fresh `clear`). The first query takes
+    /// full speed as published then: a guard that has just started (or
+    /// restarted) cannot know what an earlier one allowed.
     pub fn in_force(&mut self, now_ns: u64) -> f64 {
+        if !self.primed {
+            self.primed = true;
+            self.in_window.push_back((now_ns, 1.0));
+        }
         let since = now_ns.saturating_sub(self.window_ns);
         while self.in_window.front().is_some_and(|&(t, _)| t < since) {
             self.in_window.pop_front();
@@ -85,18 +98,21 @@ mod tests {
     #[test]
     fn the_largest_scale_stays_in_force_for_the_window() {
         let mut g = ScaleGovernor::new(10.0, 0.5);
-        assert_eq!(g.in_force(0), 0.0);
-        g.publish(0.9, 0);
-        g.publish(0.1, 100 * MS);
-        assert_eq!(g.in_force(400 * MS), 0.9);
-        assert_eq!(g.in_force(500 * MS), 0.9);
-        assert_eq!(g.in_force(501 * MS), 0.1);
-        assert_eq!(g.in_force(601 * MS), 0.0);
+        // Just started: an earlier guard may have allowed full speed.
+        assert_eq!(g.in_force(0), 1.0);
+        assert_eq!(g.in_force(501 * MS), 0.0);
+        g.publish(0.9, 600 * MS);
+        g.publish(0.1, 700 * MS);
+        assert_eq!(g.in_force(1000 * MS), 0.9);
+        assert_eq!(g.in_force(1100 * MS), 0.9);
+        assert_eq!(g.in_force(1101 * MS), 0.1);
+        assert_eq!(g.in_force(1201 * MS), 0.0);
     }
 
     #[test]
     fn a_flood_of_decisions_keeps_memory_bounded_and_the_maximum() {
         let mut g = ScaleGovernor::new(1e9, 10.0);
+        g.primed = true;
         for k in 0..3 * MAX_ENTRIES as u64 {
             g.publish(1.0 - k as f64 * 1e-5, k);
         }

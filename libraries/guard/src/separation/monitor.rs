@@ -21,7 +21,9 @@ pub struct SpeedScale {
     /// The link whose separation keeps the scale below 1 (`None` at 1).
     pub limiting_link: Option<usize>,
     /// That link's `S_p` at the scale (metres, `C` included), or the stop
-    /// distance at scale 1.
+    /// distance at scale 1. At scale 0, what it needs to stop, or, when
+    /// stopping now keeps the separation but no speed above 0 does, what the
+    /// slowest motion would need.
     pub protective_distance: f64,
 }
 
@@ -73,15 +75,25 @@ impl SpeedMonitor {
         &self.motion
     }
 
-    /// How long a published scale can still drive the arm: the horizon, the
-    /// reaction time and the longest stop.
+    /// How far back a published scale can still drive the arm, seen from a
+    /// decision on a joint state at most `horizon` old: the joint state's
+    /// age, the verdict's horizon, the reaction time and the longest stop
+    /// (from the highest speed a joint state may report).
     pub fn window(&self, horizon: f64) -> f64 {
-        horizon + self.motion.reaction_time + self.motion.longest_stop()
+        2.0 * horizon
+            + self.motion.reaction_time
+            + self.motion.longest_stop(1.0 + OVER_LIMIT_TOLERANCE)
+    }
+
+    /// Links this monitor bounds.
+    pub fn links(&self) -> usize {
+        self.levers.links()
     }
 
     /// Per actuated joint, the fastest it may be moving until a new verdict
     /// takes effect: its measured speed or `in_force` times its limit,
-    /// whichever is faster. Without measurements the limit alone. A measured
+    /// whichever is faster (without measurements, `in_force` times the
+    /// limit). A measured
     /// speed over the limit (beyond [`OVER_LIMIT_TOLERANCE`]) is returned as
     /// an error: the arm is not where the guard can bound it.
     pub fn current_speeds(
@@ -147,6 +159,11 @@ impl SpeedMonitor {
         now: &MotionNow,
         timing: &Timing,
     ) -> SpeedScale {
+        // Lengths that do not match the arm would drop links or joints from
+        // the bound: never a reason to move.
+        if clearances.len() != self.levers.links() || now.speeds.len() != self.motion.joints.len() {
+            return SpeedScale::binary(false, stop_distance);
+        }
         let at = |s: f64| self.tightest(clearances, stop_distance, now, timing, s);
         let (link, margin, sp) = at(0.0);
         if !(margin >= 0.0) {
@@ -172,13 +189,32 @@ impl SpeedMonitor {
                 hi = mid;
             }
         }
-        let (link, _, _) = at(hi);
-        let (_, _, sp) = at(lo);
+        let (link, _, sp_hi) = at(hi);
+        // Stopping now keeps the separation but no speed above 0 does (a
+        // measured stop is never shorter than its slowest sample): scale 0,
+        // with what the slowest motion would need.
+        let sp = if lo == 0.0 { sp_hi } else { at(lo).2 };
         SpeedScale {
             scale: lo,
             limiting_link: Some(link),
             protective_distance: sp,
         }
+    }
+
+    /// The largest `S_p` (stop distance included) any link needs at `scale`.
+    pub fn needed_at(
+        &self,
+        clearances: &[f64],
+        stop_distance: f64,
+        now: &MotionNow,
+        timing: &Timing,
+        scale: f64,
+    ) -> f64 {
+        self.needs(now, timing, scale)
+            .iter()
+            .zip(clearances)
+            .map(|(need, _)| stop_distance + need.total())
+            .fold(stop_distance, f64::max)
     }
 
     /// The largest `S_p` any link can need (full speed everywhere): the

@@ -101,11 +101,16 @@ impl ArmMotion {
         Ok(())
     }
 
-    /// The longest any joint takes to stop from its velocity limit.
-    pub fn longest_stop(&self) -> f64 {
+    /// The longest any joint takes to stop from `factor` times its velocity
+    /// limit.
+    pub fn longest_stop(&self, factor: f64) -> f64 {
         self.joints
             .iter()
-            .map(|j| j.stopping.stop(j.max_velocity, j.max_velocity).time)
+            .map(|j| {
+                j.stopping
+                    .stop(factor * j.max_velocity, j.max_velocity)
+                    .time
+            })
             .fold(0.0, f64::max)
     }
 }

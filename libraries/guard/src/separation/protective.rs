@@ -17,6 +17,10 @@
 //! 3. at most `v_j` until the verdict expires (the horizon `H`);
 //! 4. then it stops from at most `v_j`.
 //!
+//! Phases 2 to 4 are also bounded as a whole by `max(w_j, v_j)` for `H`
+//! and a stop from that speed; each joint counts the smaller bound
+//! (`after_reaction`), which keeps `S_p` growing with the scale.
+//!
 //! A stop verdict at any moment is covered too: it stops from `w_j` after
 //! phase 1 or from `v_j` later, each counted above. `S_r + S_s` is each
 //! joint's travel over these phases times its lever arm on the link, summed
@@ -30,7 +34,8 @@
 //! uncertainty.
 
 use super::lever::LeverArms;
-use super::motion::ArmMotion;
+use super::motion::{ArmMotion, JointMotion};
+use super::stopping::Stop;
 
 /// What a decision knows of the arm's motion besides the scale it weighs.
 #[derive(Debug, Clone, Copy)]
@@ -69,6 +74,38 @@ impl Protective {
     }
 }
 
+/// One joint's travel from the moment the new verdict takes effect until it
+/// has stopped, and how long its slowing and stopping take beyond the
+/// horizon, moving at `w` before and allowed `v` after: the smaller of two
+/// bounds that both hold.
+/// - In phases: slow from `w` to `v` (if slower), `v` for the horizon, stop
+///   from `v` (tight under a constant deceleration).
+/// - At most `m = max(w, v)` throughout the horizon (slowing never speeds
+///   up), then a stop from at most `m` (tight for a table, whose "slowing"
+///   is a whole stop from `w`).
+///
+/// Both grow with `v` once `v >= w`, and below `w` the second does not
+/// depend on `v` while the first grows with it: the smaller one, and so
+/// `S_p`, never shrinks as the scale grows, so any scale below a feasible one
+/// is feasible too (the rise limit relies on it).
+fn after_reaction(joint: &JointMotion, w: f64, v: f64, horizon: f64) -> (f64, f64) {
+    let limit = joint.max_velocity;
+    let slowing = if w > v {
+        joint.stopping.slow(w, v, limit)
+    } else {
+        Stop::default()
+    };
+    let stop = joint.stopping.stop(v, limit);
+    let phased = (
+        slowing.distance + v * horizon + stop.distance,
+        slowing.time + stop.time,
+    );
+    let m = w.max(v);
+    let full = joint.stopping.stop(m, limit);
+    let steady = (m * horizon + full.distance, full.time);
+    (phased.0.min(steady.0), phased.1.min(steady.1))
+}
+
 /// `S_p - C` of link `link` at `scale` (in [0, 1]).
 pub fn protective(
     motion: &ArmMotion,
@@ -94,16 +131,9 @@ pub fn protective(
             continue;
         }
         moves = true;
-        let v = scale * joint.max_velocity;
-        let slowing = if w > v {
-            joint.stopping.slow(w, v, joint.max_velocity)
-        } else {
-            Default::default()
-        };
-        let stop = joint.stopping.stop(v, joint.max_velocity);
-        let travel = w * reaction + slowing.distance + v * timing.horizon + stop.distance;
-        arm_travel += lever * travel;
-        stop_time = stop_time.max(slowing.time + stop.time);
+        let (rest, time) = after_reaction(joint, w, scale * joint.max_velocity, timing.horizon);
+        arm_travel += lever * (w * reaction + rest);
+        stop_time = stop_time.max(time);
     }
     // A link no joint moves (the base) cannot get out of the way by
     // stopping: it keeps the stop distance (and Z_r) alone, as without

@@ -224,6 +224,35 @@ fn a_fast_arm_must_slow_first_and_an_arm_over_its_limit_is_refused() {
 }
 
 #[test]
+fn a_measured_stop_that_forbids_any_motion_reports_what_motion_needs() {
+    let arm = two_link_arm();
+    let table = StoppingModel::Measured(vec![StopSample {
+        fraction: 1.0,
+        distance: 0.2,
+        time: 0.2,
+    }]);
+    let mut m = motion(5.0);
+    m.joints[0].stopping = table.clone();
+    m.joints[1].stopping = table;
+    let monitor = SpeedMonitor::new(&arm, m).unwrap();
+    let timing = Timing {
+        horizon: 0.0,
+        obstacle_speed: 0.0,
+    };
+    let still = [0.0, 0.0];
+    let now = MotionNow {
+        speeds: &still,
+        joint_state_age: 0.0,
+    };
+    // Standing still needs C + Z_r = 0.06; any motion a 0.2 rad stop on
+    // each joint, times the levers.
+    let s = monitor.scale(&[1.0, 1.0, 0.1], 0.05, &now, &timing);
+    assert_eq!(s.scale, 0.0);
+    assert!(s.protective_distance > 0.1, "{s:?}");
+    assert_eq!(s.limiting_link, Some(2));
+}
+
+#[test]
 fn a_missing_or_bad_motion_table_is_named() {
     let arm = two_link_arm();
     let mut m = motion(2.0);
@@ -242,4 +271,80 @@ fn a_missing_or_bad_motion_table_is_named() {
         .unwrap_err()
         .to_string()
         .contains("'elbow'"));
+}
+
+/// `S_p` never shrinks as the scale grows, for random stopping models
+/// (constant decelerations and measured tables), current speeds and
+/// timings: so every scale below a feasible one is feasible, which the rise
+/// limit relies on.
+#[test]
+fn the_protective_distance_grows_with_the_scale() {
+    let mut rng = Pcg64::seed_from_u64(10218);
+    let arm = two_link_arm();
+    let levers = LeverArms::new(&arm).unwrap();
+    for _ in 0..2000 {
+        let mut joint = || {
+            let max_velocity = rng.random_range(0.2..3.0);
+            let stopping = if rng.random_bool(0.5) {
+                StoppingModel::Deceleration(rng.random_range(0.5..20.0))
+            } else {
+                let (mut d, mut t) = (0.0, 0.0);
+                let mut fractions: Vec<f64> = (0..rng.random_range(0..4))
+                    .map(|_| rng.random_range(0.05..0.95))
+                    .collect();
+                fractions.sort_by(f64::total_cmp);
+                fractions.dedup();
+                fractions.push(1.0);
+                StoppingModel::Measured(
+                    fractions
+                        .into_iter()
+                        .map(|fraction| {
+                            d += rng.random_range(0.0..0.2);
+                            t += rng.random_range(0.0..0.2);
+                            StopSample {
+                                fraction,
+                                distance: d,
+                                time: t,
+                            }
+                        })
+                        .collect(),
+                )
+            };
+            JointMotion {
+                max_velocity,
+                stopping,
+            }
+        };
+        let joints = vec![joint(), joint()];
+        let speeds: Vec<f64> = joints
+            .iter()
+            .map(|j| rng.random_range(0.0..1.05) * j.max_velocity)
+            .collect();
+        let motion = ArmMotion {
+            reaction_time: rng.random_range(0.0..0.2),
+            position_uncertainty: 0.0,
+            scale_rise_per_second: 1.0,
+            joints,
+        };
+        let now = MotionNow {
+            speeds: &speeds,
+            joint_state_age: rng.random_range(0.0..0.1),
+        };
+        let timing = Timing {
+            horizon: rng.random_range(0.0..0.3),
+            obstacle_speed: rng.random_range(0.0..2.0),
+        };
+        for link in 0..3 {
+            let mut previous = 0.0;
+            for k in 0..=100 {
+                let s = k as f64 / 100.0;
+                let need = protective(&motion, &levers, link, &now, &timing, s).total();
+                assert!(
+                    need >= previous - 1e-12,
+                    "{motion:?} {speeds:?} link {link} at {s}: {need} < {previous}"
+                );
+                previous = need;
+            }
+        }
+    }
 }

@@ -17,5 +17,6 @@ pub use views::{
     Hello, TopicRate,
 };
 
-/// The protocol version in `hello`.
-pub const PROTOCOL_VERSION: u32 = 1;
+/// The protocol version in `hello` (version 2 added the verdict frame's
+/// `speed_scale`, `limiting_link` and `protective_distance`).
+pub const PROTOCOL_VERSION: u32 = 2;

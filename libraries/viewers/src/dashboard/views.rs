@@ -4,7 +4,7 @@
 use super::frame::{ArrayData, Frame};
 use super::PROTOCOL_VERSION;
 use crate::scene::{
-    smooth_mesh, surrogate_meshes, ClearanceBand, Decimation, PosedArm, SceneError,
+    smooth_mesh, surrogate_meshes, ArmSpeed, ClearanceBand, Decimation, PosedArm, SceneError,
 };
 use serde_json::{json, Map, Value};
 use shroud_graph::metrics::NodeRow;
@@ -237,14 +237,20 @@ pub fn arm_frame(arm: &PosedArm) -> Vec<u8> {
         .encode()
 }
 
-/// The verdict to show for `arm`, with each link's band.
+/// The verdict to show for `arm`, with each link's band and the arm's speed
+/// ([`ArmSpeed`]: the scale is 0 for anything but a fresh `clear`; a silent
+/// guard's last limiting link and `S_p` are `null`).
 pub fn verdict_frame(arm: &str, shown: &ShownVerdict<'_>) -> Vec<u8> {
+    let speed = ArmSpeed::of(shown);
     let mut frame = Frame::new("verdict")
         .field("arm", arm)
         .field("verdict", shown.verdict.name())
         .field("stop", shown.verdict != shroud_msg::GuardVerdict::Clear)
         .field("reason", shown.reason.as_str())
-        .field("verdict_age_ms", shown.age_ns.map(|a| a as f64 / 1e6));
+        .field("verdict_age_ms", shown.age_ns.map(|a| a as f64 / 1e6))
+        .field("speed_scale", speed.scale)
+        .field("limiting_link", speed.limiting_link)
+        .field("protective_distance", speed.protective_distance);
     if let Some(msg) = shown.message {
         let links: Vec<Value> = msg
             .links
@@ -439,6 +445,42 @@ mod tests {
         let f = decoded(&verdict_frame("arm", &empty.shown(0)));
         assert_eq!(f.header["verdict"], "no-verdict");
         assert!(f.header.get("links").is_none());
+        assert_eq!(f.header["speed_scale"], 0.0);
+        assert_eq!(f.header["limiting_link"], Value::Null);
+    }
+
+    #[test]
+    fn a_verdict_frame_carries_the_speed_scale_its_limiting_link_and_s_p() {
+        let mut watch = VerdictWatch::new(1_000);
+        let mut msg = sample_collision(GuardVerdict::Clear);
+        (msg.speed_scale, msg.limiting_link, msg.protective_distance) =
+            (0.42, "forearm".into(), 0.84);
+        watch.on_verdict(msg, 0);
+        let f = decoded(&verdict_frame("arm", &watch.shown(10)));
+        assert_eq!(
+            (f.header["verdict"].as_str(), f.header["stop"].as_bool()),
+            (Some("clear"), Some(false))
+        );
+        assert_eq!(f.header["speed_scale"], 0.42);
+        assert_eq!(f.header["limiting_link"], "forearm");
+        assert_eq!(f.header["protective_distance"], 0.84);
+        // At full speed nothing limits it; a silent guard's numbers are gone.
+        watch.on_verdict(sample_collision(GuardVerdict::Clear), 0);
+        let f = decoded(&verdict_frame("arm", &watch.shown(10)));
+        assert_eq!(f.header["speed_scale"], 1.0);
+        assert_eq!(f.header["limiting_link"], Value::Null);
+        assert_eq!(f.header["protective_distance"], 0.05);
+        let f = decoded(&verdict_frame("arm", &watch.shown(5_000)));
+        assert_eq!(f.header["verdict"], "no-verdict");
+        assert_eq!(f.header["speed_scale"], 0.0);
+        assert_eq!(f.header["protective_distance"], Value::Null);
+        // A stop moves at 0, whatever its limiting link.
+        let mut stop = sample_collision(GuardVerdict::Stop);
+        stop.limiting_link = "tool".into();
+        watch.on_verdict(stop, 0);
+        let f = decoded(&verdict_frame("arm", &watch.shown(10)));
+        assert_eq!(f.header["speed_scale"], 0.0);
+        assert_eq!(f.header["limiting_link"], "tool");
     }
 
     #[test]
@@ -504,7 +546,7 @@ mod tests {
             stop_banner_after_ms: 500.0,
         };
         let f = decoded(&hello_frame(&hello));
-        assert_eq!(f.header["protocol"], 1);
+        assert_eq!(f.header["protocol"], 2);
         assert_eq!(f.header["blend"]["parts"][1], "scan.ply");
         let f = decoded(&blend_result_frame(3, Err("off the surface".into())));
         assert_eq!(

@@ -1,10 +1,12 @@
 //! What viewers draw of the graph's messages (the web dashboard, the Foxglove
 //! bridge, recordings): clouds thinned to a point budget, surrogates as their
 //! trimmed triangle meshes, smooth fits tessellated, the arm posed at its joint
-//! state, and each link's clearance band. Pure functions of decoded messages;
-//! every viewer encodes the results in its own format.
+//! state, each link's clearance band, and the arm's speed as its verdict
+//! allows (the speed scale and the link that limits it). Pure functions of
+//! decoded messages; every viewer encodes the results in its own format.
 
 mod arm_pose;
+mod arm_speed;
 mod clearance_band;
 mod decimate;
 mod error;
@@ -12,6 +14,7 @@ mod smooth_mesh;
 mod surface_mesh;
 
 pub use arm_pose::{pose_arm, PosedArm, PosedLink};
+pub use arm_speed::{ArmSpeed, SpeedState};
 pub use clearance_band::ClearanceBand;
 pub use decimate::Decimation;
 pub use error::SceneError;

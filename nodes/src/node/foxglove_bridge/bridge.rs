@@ -11,8 +11,8 @@ use crate::node::NodeContext;
 use crate::to_foxglove::{
     arm_scene, arm_scene_topic, arm_transforms, arm_transforms_topic, certificate_topic,
     certificate_view, cloud_topic, point_cloud, status_topic, status_view, surrogate_scene,
-    surrogate_topic, verdict_topic, verdict_view, vouched_bands, CertificateView, StatusView,
-    VerdictView, VERDICT_PERIOD_NS,
+    surrogate_topic, verdict_topic, verdict_view, vouched_bands, vouched_speed, CertificateView,
+    StatusView, VerdictView, VERDICT_PERIOD_NS,
 };
 use crate::transport::monotonic_ns;
 use foxglove::messages::{FrameTransforms, PointCloud, SceneUpdate};
@@ -212,9 +212,10 @@ impl Bridge {
         if self.out.scenes.wanted(&scene) || self.out.transforms.wanted(&frames) {
             let posed = pose_arm(model, &msg).map_err(|e| e.to_string())?;
             let now = monotonic_ns();
-            let bands = vouched_bands(self.watches.get(&msg.arm), now);
+            let watch = self.watches.get(&msg.arm);
+            let (bands, speed) = (vouched_bands(watch, now), vouched_speed(watch, now));
             let logged = self.out.scenes.log_with(&scene, || {
-                Ok::<_, String>(arm_scene(&posed, &bands, msg.stamp_ns))
+                Ok::<_, String>(arm_scene(&posed, &bands, &speed, msg.stamp_ns))
             })?;
             self.count(logged);
             let logged = self.out.transforms.log_with(&frames, || {

@@ -1,6 +1,7 @@
 // Starts the dashboard page: builds the panels, opens the socket, decodes each frame as it
 // arrives and hands the message to the panels that show it. Drawing happens on animation frames
-// (scene/view.js); the banner is re-judged ten times a second and the plots four times.
+// (scene/view.js); the banner and the speed gauge are re-judged ten times a second and the plots
+// four times.
 
 import { BlendPanel, attachDropTarget } from './blend_panel.js';
 import { CertificatesTable } from './certificates.js';
@@ -15,6 +16,7 @@ import { TimeSeriesPlot } from './plots.js';
 import { decodeFrame } from './protocol.js';
 import { attachCameraControls } from './scene/camera_controls.js';
 import { SceneView } from './scene/view.js';
+import { SpeedGauge, speedGaugeState } from './speed_gauge.js';
 import { StatusBar } from './status_bar.js';
 import { StopBanner, bannerState } from './stop_banner.js';
 import { StreamList } from './stream_list.js';
@@ -49,6 +51,7 @@ const feeds = new PlotFeeds(plots);
 const nodesTable = new NodesTable($('nodes-table'), $('nodes-summary'));
 const certificates = new CertificatesTable($('certificates-body'));
 const banner = new StopBanner($('stop-banner'));
+const gauge = new SpeedGauge($('speed-gauge'));
 const legend = new Legend($('legend'));
 const streams = new StreamList($('streams'));
 let hello = null; // the current connection's
@@ -139,7 +142,9 @@ controls.setColorMode('height');
 connection.open();
 
 setInterval(() => {
-  banner.show(bannerState({ socketOpen: connection.isOpen, helloReceived: hello !== null, book, nowMs: performance.now() }));
+  const judged = { socketOpen: connection.isOpen, helloReceived: hello !== null, book, nowMs: performance.now() };
+  banner.show(bannerState(judged));
+  gauge.show(speedGaugeState(judged));
 }, 100);
 setInterval(() => {
   const nowMs = performance.now();

@@ -129,17 +129,38 @@ function readLinkVerdict(raw, index) {
   };
 }
 
+// The fraction of each joint's velocity limit the verdict allows: in (0, 1] for a clear (required),
+// 0 for a stop (absent reads as 0). A clear at 0 or a stop above 0 contradicts itself: refused.
+function readSpeedScale(header, stop) {
+  if (stop) {
+    const scale = f.optionalNumber(header, 'speed_scale', 0);
+    if (scale !== 0) throw new FrameError(`verdict: field "speed_scale" is ${scale} with a stop, not 0`);
+    return 0;
+  }
+  const scale = f.number(header, 'speed_scale');
+  if (!(scale > 0 && scale <= 1)) throw new FrameError(`verdict: field "speed_scale" is ${scale}, not in (0, 1] for a clear`);
+  return scale;
+}
+
 function readVerdict({ header }) {
   const verdict = f.string(header, 'verdict');
+  // Anything but an explicit clear stops: a verdict the page does not know is not "clear".
+  const stop = f.optionalBoolean(header, 'stop', verdict !== 'clear') || verdict !== 'clear';
+  const protectiveDistance = f.optionalNumber(header, 'protective_distance');
+  if (protectiveDistance !== null && protectiveDistance < 0) {
+    throw new FrameError(`verdict: field "protective_distance" is ${protectiveDistance}, not a distance >= 0`);
+  }
   return {
     arm: f.string(header, 'arm'),
     verdict,
-    // Anything but an explicit clear stops: a verdict the page does not know is not "clear".
-    stop: f.optionalBoolean(header, 'stop', verdict !== 'clear') || verdict !== 'clear',
+    stop,
     reason: f.optionalString(header, 'reason'),
     minClearance: f.optionalNumber(header, 'min_clearance'),
     closestLink: f.optionalString(header, 'closest_link'),
     stopDistance: f.optionalNumber(header, 'stop_distance'),
+    speedScale: readSpeedScale(header, stop),
+    limitingLink: f.optionalString(header, 'limiting_link'),
+    protectiveDistance,
     links: f.list(header, 'links').map(readLinkVerdict),
   };
 }

@@ -4,6 +4,10 @@
 
 export class FrameError extends Error {}
 
+// The protocol version this page speaks (the hello's "protocol"); version 2 added the verdict's
+// speed_scale, limiting_link and protective_distance.
+export const PROTOCOL_VERSION = 2;
+
 const ELEMENT_TYPES = {
   f32: { view: Float32Array, bytes: 4 },
   u32: { view: Uint32Array, bytes: 4 },

@@ -2,6 +2,8 @@
 // last problem, so a bad frame is shown, never silently lost), frames of unknown type (ignored
 // by design) and the node's own dashboard counters.
 
+import { PROTOCOL_VERSION } from './protocol.js';
+
 export class StatusBar {
   constructor(elements) {
     this.elements = elements; // {connection, namespace, frames, malformed, serverError}
@@ -19,7 +21,9 @@ export class StatusBar {
 
   onHello(hello) {
     this.elements.namespace.textContent = `namespace ${hello.namespace || '–'}`;
-    if (hello.protocol !== 1) this.showServerError(`the node speaks protocol ${hello.protocol}, this page 1`);
+    if (hello.protocol !== PROTOCOL_VERSION) {
+      this.showServerError(`the node speaks protocol ${hello.protocol}, this page ${PROTOCOL_VERSION}`);
+    }
   }
 
   countFrame() {
