@@ -532,7 +532,7 @@ fn the_cell_demo_slows_stops_and_resumes_the_arm_as_the_person_passes() {
                 assert_eq!(s, 0.0, "{c:?}");
                 stops += 1;
             }
-            (false, s) if s == 1.0 => full += 1,
+            (false, 1.0) => full += 1,
             (false, s) => {
                 assert!(s > 0.0 && s < 1.0, "{c:?}");
                 scaled += 1;

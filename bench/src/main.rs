@@ -10,13 +10,15 @@ mod devices;
 mod encode;
 mod foxglove_clients;
 mod graph;
+mod guard_separation;
 mod guard_soundness;
 mod latency;
 mod paper000;
 mod soak;
 
 use anyhow::Result;
-use clap::{Parser, ValueEnum};
+use clap::parser::ValueSource;
+use clap::{CommandFactory, FromArgMatches, Parser, ValueEnum};
 use shroud_nodes::timing::{median, timed};
 use std::process::ExitCode;
 
@@ -44,6 +46,13 @@ pub enum Suite {
     /// of moving solids scanned by random sensors, `--verdicts-per-case`
     /// verdicts each; counts optimistic `clear` verdicts (must be 0).
     GuardSoundness,
+    /// The guard's speed and separation monitoring in closed loop:
+    /// `--trajectories` simulated arms running random trajectories at the
+    /// scale of their verdicts among solids and people moving at up to
+    /// `--obstacle-speed` (1.6 m/s here); counts the moments the moving arm
+    /// came within the stop distance (must be 0) and compares productivity
+    /// with a binary stop.
+    GuardSeparation,
 }
 
 #[derive(Debug, Parser)]
@@ -98,13 +107,20 @@ pub struct BenchArgs {
     /// Guard soundness: verdicts per scene (arm poses x decision times).
     #[arg(long, default_value_t = 100)]
     pub verdicts_per_case: usize,
-    /// Guard soundness: bound on the solids' speed, also the guard's
-    /// max_obstacle_speed (m/s).
+    /// Guard soundness and separation: bound on the solids' speed, also the
+    /// guard's max_obstacle_speed (m/s; guard-separation: 1.6 unless given).
     #[arg(long, default_value_t = 0.25)]
     pub obstacle_speed: f64,
-    /// Guard soundness: share of views fitted as sandwiches (else upper).
+    /// Whether --obstacle-speed was given (guard-separation's default differs).
+    #[arg(skip)]
+    pub obstacle_speed_given: bool,
+    /// Guard soundness and separation: share of views fitted as sandwiches
+    /// (else upper; guard-separation: 0 unless given).
     #[arg(long, default_value_t = 0.5)]
     pub sandwich_share: f64,
+    /// Whether --sandwich-share was given (guard-separation's default differs).
+    #[arg(skip)]
+    pub sandwich_share_given: bool,
     /// Guard soundness: share of black solids (no range returned).
     #[arg(long, default_value_t = 0.15)]
     pub black_share: f64,
@@ -121,6 +137,53 @@ pub struct BenchArgs {
     /// interpolated across a black solid).
     #[arg(long)]
     pub no_empty_rays: bool,
+    /// Guard separation: closed-loop trajectories to simulate (each seeded
+    /// from --seed and its index; a failure prints its seed for --replay).
+    #[arg(long, default_value_t = 10_000)]
+    pub trajectories: u64,
+    /// Guard separation: simulated seconds per trajectory.
+    #[arg(long, default_value_t = 3.0)]
+    pub duration: f64,
+    /// Guard separation: most rays per scan (default: the library's).
+    #[arg(long)]
+    pub max_rays: Option<usize>,
+    /// Guard separation: perspective sensors stating their field of view
+    /// and empty rays, instead of parallel rays.
+    #[arg(long)]
+    pub perspective: bool,
+    /// Guard separation: skip the binary guard's run (no productivity comparison).
+    #[arg(long)]
+    pub no_binary: bool,
+    /// Guard separation: how the simulated arm treats its verdicts (the
+    /// other values are negative controls that must fail).
+    #[arg(long, value_enum, default_value = "obeys")]
+    pub arm: guard_separation::ArmChoice,
+    /// Guard separation: the negative control's amount (seconds late, or
+    /// the factor of soft brakes).
+    #[arg(long, default_value_t = 0.2)]
+    pub arm_amount: f64,
+    /// Guard separation, negative control: the obstacle speed the guard is
+    /// told (the solids keep --obstacle-speed).
+    #[arg(long)]
+    pub declared_obstacle_speed: Option<f64>,
+    /// Guard separation: how much higher than in the soundness scenes the
+    /// arms are mounted (m).
+    #[arg(long, default_value_t = 0.8)]
+    pub mount_lift: f64,
+    /// Guard separation: every shape of every waypoint is at least this
+    /// high above the floor (m).
+    #[arg(long, default_value_t = 1.0)]
+    pub min_height: f64,
+    /// Guard separation: share of trajectories with a person walking across.
+    #[arg(long, default_value_t = 0.5)]
+    pub person_share: f64,
+    /// Guard separation: share of joint states carrying measured velocities.
+    #[arg(long, default_value_t = 0.75)]
+    pub velocities_share: f64,
+    /// Guard separation: run the one trajectory with this seed (decimal or
+    /// 0x hex, as a failure prints it), printing its scene.
+    #[arg(long)]
+    pub replay: Option<String>,
 }
 
 fn run(args: BenchArgs) -> Result<()> {
@@ -132,12 +195,17 @@ fn run(args: BenchArgs) -> Result<()> {
         Suite::Consumers => consumers::run(&args),
         Suite::Soak => soak::run(&args),
         Suite::GuardSoundness => guard_soundness::run_bench(&args),
+        Suite::GuardSeparation => guard_separation::run_bench(&args),
     }
 }
 
 /// An error is printed with its causes on one line, and exits 1.
 fn main() -> ExitCode {
-    let args = BenchArgs::parse();
+    let matches = BenchArgs::command().get_matches();
+    let mut args = BenchArgs::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    let given = |id: &str| matches.value_source(id) == Some(ValueSource::CommandLine);
+    args.obstacle_speed_given = given("obstacle_speed");
+    args.sandwich_share_given = given("sandwich_share");
     // Warnings of the libraries (zenoh's included) on standard error, unless
     // RUST_LOG asks for more; the tables go to standard output.
     let filter = tracing_subscriber::EnvFilter::try_from_default_env()

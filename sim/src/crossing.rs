@@ -30,8 +30,10 @@ pub struct Crossing {
     /// Seconds spent standing at each end before walking back.
     pub pause_s: f32,
     pub seed: u64,
-    /// The floor the person walks on (its height is the capsule's foot).
-    pub floor: Floor,
+    /// The floor the person walks on, sampled too when given (its height is
+    /// the capsule's foot either way; none: z = 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub floor: Option<Floor>,
 }
 
 impl Default for Crossing {
@@ -47,11 +49,11 @@ impl Default for Crossing {
             speed: 1.6,
             pause_s: 3.0,
             seed: 0,
-            floor: Floor {
+            floor: Some(Floor {
                 z: 0.0,
                 half_extent: 2.0,
                 spacing: 0.04,
-            },
+            }),
         }
     }
 }
@@ -73,7 +75,13 @@ impl Crossing {
         }
         check_positive("speed", f64::from(self.speed))?;
         check_non_negative("pause_s", f64::from(self.pause_s))?;
-        self.floor.validate()
+        self.floor.as_ref().map_or(Ok(()), Floor::validate)
+    }
+
+    /// Points of every cloud: the person's and the floor's.
+    pub fn total_points(&self) -> usize {
+        let n = self.floor.as_ref().map_or(0, Floor::per_side);
+        self.points + n * n
     }
 
     fn walk_s(&self) -> f64 {
@@ -110,7 +118,8 @@ impl Crossing {
     /// The person's capsule axis at `time`: foot and head centres.
     pub fn axis(&self, time: f64) -> [[f64; 3]; 2] {
         let [x, y] = self.position(time);
-        let (z, r) = (f64::from(self.floor.z), f64::from(self.radius));
+        let z = self.floor.as_ref().map_or(0.0, |f| f64::from(f.z));
+        let r = f64::from(self.radius);
         [[x, y, z + r], [x, y, z + f64::from(self.height) - r]]
     }
 
@@ -147,7 +156,9 @@ impl Crossing {
                 cloud.push(cap);
             }
         }
-        cloud.extend(self.floor.points());
+        if let Some(floor) = &self.floor {
+            cloud.extend(floor.points());
+        }
         Ok(cloud)
     }
 }
@@ -185,6 +196,7 @@ mod tests {
             assert!((d - 0.25).abs() < 1e-5, "{p:?} at {d}");
         }
         assert!(cloud[c.points..].iter().all(|p| p[2] == 0.0));
+        assert_eq!(cloud.len(), c.total_points());
         assert_eq!(cloud, c.generate(2.0).unwrap());
     }
 

@@ -54,7 +54,7 @@ pub const MAX_FLOOR_POINTS: usize = 1 << 20;
 
 impl Floor {
     /// Points along each side of the grid.
-    fn per_side(&self) -> usize {
+    pub(crate) fn per_side(&self) -> usize {
         (2.0 * f64::from(self.half_extent) / f64::from(self.spacing)).floor() as usize + 1
     }
 

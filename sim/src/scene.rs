@@ -109,6 +109,7 @@ impl Scene {
             "crossing" => Self::Crossing(Crossing {
                 points,
                 seed,
+                floor: None,
                 ..Crossing::default()
             }),
             Self::MESH_SCENE => {
@@ -205,7 +206,7 @@ impl Scene {
             Self::MovingSpheres(s) => s.points,
             Self::Terrain(t) => t.points,
             Self::TableTop(t) => t.points,
-            Self::Crossing(c) => c.points,
+            Self::Crossing(c) => c.total_points(),
             Self::ScanTableTop(_) | Self::ScanTerrain(_) | Self::ScanMesh(_) => {
                 self.scanner().map_or(0, RangeScanner::rays)
             }
@@ -277,6 +278,10 @@ impl FromStr for Scene {
             "table-top" => Self::TableTop(TableTop::default()),
             "scan-table-top" => Self::ScanTableTop(TableTopScan::default()),
             "scan-terrain" => Self::ScanTerrain(TerrainScan::default()),
+            "crossing" => Self::Crossing(Crossing {
+                floor: None,
+                ..Crossing::default()
+            }),
             Self::MESH_SCENE => {
                 return Err(SceneError::MeshRequired {
                     name: name.to_owned(),

@@ -17,6 +17,7 @@ pub mod report;
 pub mod run;
 pub mod scene;
 pub mod sensors;
+pub mod separation;
 pub mod solids;
 pub mod truth;
 

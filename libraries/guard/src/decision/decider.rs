@@ -2,7 +2,7 @@
 
 use super::combine::{combine, ViewReport};
 use super::policy::{GuardPolicy, UnobservedPolicy};
-use super::speed::SpeedControl;
+use super::speed_control::SpeedControl;
 use super::view::{check_skew, HeldSurrogate, SurrogateInput, SurrogateRejected};
 use crate::{check_shapes, GuardConfig, GuardError, GuardReport, SpeedScale, WorldShape};
 use shroud_msg::{counted_transit, CollisionMessage, GuardVerdict, LinkClearance};

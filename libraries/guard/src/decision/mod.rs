@@ -35,6 +35,7 @@ mod combine;
 mod decider;
 mod policy;
 mod speed;
+mod speed_control;
 mod view;
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 //! its rise ([`ScaleGovernor`]); a scale of 0 turns `clear` into `stop`.
 
 use super::decider::{CollisionGuard, Decision};
+use super::speed_control::SpeedControl;
 use crate::{GuardError, MotionNow, ScaleGovernor, SpeedMonitor, SpeedScale, Timing, WorldShape};
 use shroud_msg::{counted_transit, GuardVerdict};
 
@@ -14,13 +15,6 @@ pub struct JointMotionSample<'a> {
     /// Nanoseconds from the joint state's sample to the decision, on the
     /// guard's clocks (its transit, bounded as the views' transit is).
     pub age_ns: u64,
-}
-
-/// A guard's speed monitoring: the arm's bound and its published scales.
-#[derive(Debug, Clone)]
-pub(super) struct SpeedControl {
-    monitor: SpeedMonitor,
-    governor: ScaleGovernor,
 }
 
 impl CollisionGuard {
