@@ -75,9 +75,11 @@ fn depth_below_centre(body: &Body) -> f64 {
     }
 }
 
-fn random_solid(rng: &mut Pcg64, params: &SoundnessParams) -> Solid {
-    let max_speed = params.max_obstacle_speed;
-    let body = match rng.random_range(0..3) {
+/// A sphere (r 0.05–0.35 m), a box (half extents 0.03–0.3 m, axis-aligned
+/// or rotated) or a capsule (half length 0.05–0.4 m, r 0.03–0.15 m), a third
+/// each.
+pub(super) fn random_body(rng: &mut Pcg64) -> Body {
+    match rng.random_range(0..3) {
         0 => Body::Sphere {
             radius: rng.random_range(0.05..0.35),
         },
@@ -98,7 +100,12 @@ fn random_solid(rng: &mut Pcg64, params: &SoundnessParams) -> Solid {
             axis: unit(rng),
             radius: rng.random_range(0.03..0.15),
         },
-    };
+    }
+}
+
+fn random_solid(rng: &mut Pcg64, params: &SoundnessParams) -> Solid {
+    let max_speed = params.max_obstacle_speed;
+    let body = random_body(rng);
     let resting = rng.random_bool(0.6);
     let z = depth_below_centre(&body)
         + if resting {

@@ -4,19 +4,20 @@
 //! joint state, decision and verdict.
 
 use super::super::arms::{random_configuration, ArmKind, Arms};
+use super::super::scene::random_body;
 use super::super::sensors::{FieldOfView, Projection, Sensor};
 use super::super::solids::{Body, Solid};
 use super::super::SoundnessError;
 use super::reference::Reference;
 use super::SeparationParams;
-use glam::{DAffine3, DQuat, DVec2, DVec3};
+use glam::{DAffine3, DVec2, DVec3};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use shroud_guard::{
     ArmModel, ArmMotion, Deadman, JointKind, JointMotion, Shape, StopSample, StoppingModel,
 };
 use shroud_surrogate::Sides;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 use std::fmt;
 
 /// The two arms of [`Arms`], mounted `lift` higher (so that the floor, which
@@ -242,28 +243,7 @@ fn below(at: DVec3, mut velocity: DVec3, crossing: f64, duration: f64, top: f64)
 /// these, half are aimed at `aim` (where some shape of the arm is at one of
 /// its waypoints, give or take 0.3 m) and a tenth stand still near it.
 fn random_solid(rng: &mut Pcg64, params: &SeparationParams, base: DVec3, aim: DVec3) -> Solid {
-    let body = match rng.random_range(0..3) {
-        0 => Body::Sphere {
-            radius: rng.random_range(0.05..0.35),
-        },
-        1 => Body::Cuboid {
-            half: DVec3::new(
-                rng.random_range(0.03..0.3),
-                rng.random_range(0.03..0.3),
-                rng.random_range(0.03..0.3),
-            ),
-            rotation: if rng.random_bool(0.5) {
-                DQuat::IDENTITY
-            } else {
-                DQuat::from_axis_angle(unit(rng), rng.random_range(0.0..PI))
-            },
-        },
-        _ => Body::Capsule {
-            half_length: rng.random_range(0.05..0.4),
-            axis: unit(rng),
-            radius: rng.random_range(0.03..0.15),
-        },
-    };
+    let body = random_body(rng);
     let resting = rng.random_bool(0.4);
     let crossing = rng.random_range(0.0..=params.duration);
     let ceiling = base.z + CEILING_ABOVE_MOUNT;
