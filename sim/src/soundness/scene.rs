@@ -235,16 +235,8 @@ impl fmt::Display for SoundnessScene {
             let o = &s.sensor;
             writeln!(
                 f,
-                "  sensor {k}: origin {:.3?} look {:.3?} {:?} range {:.2} step {:.5} ({} rays, margin {:.3}) \
-                 {:?} scan {:.3} s pipeline {:.3} s transit {:.3} s grid {}x{} {:?}",
-                o.origin.to_array(),
-                o.look.to_array(),
-                o.fov,
-                o.max_range,
-                o.step,
-                o.ray_count(),
-                o.sampling_margin(),
-                o.projection,
+                "  sensor {k}: {} scan {:.3} s pipeline {:.3} s transit {:.3} s grid {}x{} {:?}",
+                o.describe(),
                 o.time,
                 s.pipeline,
                 s.transit,

@@ -107,6 +107,22 @@ pub struct Sensor {
 }
 
 impl Sensor {
+    /// One line for replay logs: pose, aperture, range, ray grid and
+    /// projection.
+    pub fn describe(&self) -> String {
+        format!(
+            "origin {:.3?} look {:.3?} {:?} range {:.2} step {:.5} ({} rays, margin {:.3}) {:?}",
+            self.origin.to_array(),
+            self.look.to_array(),
+            self.fov,
+            self.max_range,
+            self.step,
+            self.ray_count(),
+            self.sampling_margin(),
+            self.projection,
+        )
+    }
+
     /// A sensor at `origin` looking along `look` (need not be unit), its
     /// image x axis as horizontal as the look allows.
     pub fn new(

@@ -180,10 +180,42 @@ pub fn nearest_surface_point(solid: &Solid, t: f64, p: DVec3) -> DVec3 {
     }
 }
 
+/// Three bodies (a sphere, a rotated box, a tilted capsule) and two cores
+/// (a ball, a slanted segment) that the distance tests check against dense
+/// sampling.
+#[cfg(test)]
+pub(super) fn test_bodies_and_cores() -> ([Body; 3], [Core; 2]) {
+    use glam::DQuat;
+    let bodies = [
+        Body::Sphere { radius: 0.2 },
+        Body::Cuboid {
+            half: DVec3::new(0.3, 0.1, 0.2),
+            rotation: DQuat::from_rotation_z(0.4) * DQuat::from_rotation_y(0.3),
+        },
+        Body::Capsule {
+            half_length: 0.3,
+            axis: DVec3::new(0.0, 1.0, 1.0).normalize(),
+            radius: 0.05,
+        },
+    ];
+    let cores = [
+        Core {
+            a: DVec3::new(0.8, 0.3, 0.6),
+            b: DVec3::new(0.8, 0.3, 0.6),
+            radius: 0.05,
+        },
+        Core {
+            a: DVec3::new(0.6, -0.5, 0.2),
+            b: DVec3::new(0.9, 0.4, 0.9),
+            radius: 0.04,
+        },
+    ];
+    (bodies, cores)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DQuat;
 
     fn solid(body: Body, velocity: DVec3) -> Solid {
         Solid {
@@ -209,30 +241,7 @@ mod tests {
 
     #[test]
     fn swept_distances_match_dense_sampling() {
-        let bodies = [
-            Body::Sphere { radius: 0.2 },
-            Body::Cuboid {
-                half: DVec3::new(0.3, 0.1, 0.2),
-                rotation: DQuat::from_rotation_z(0.4) * DQuat::from_rotation_y(0.3),
-            },
-            Body::Capsule {
-                half_length: 0.3,
-                axis: DVec3::new(0.0, 1.0, 1.0).normalize(),
-                radius: 0.05,
-            },
-        ];
-        let cores = [
-            Core {
-                a: DVec3::new(0.8, 0.3, 0.6),
-                b: DVec3::new(0.8, 0.3, 0.6),
-                radius: 0.05,
-            },
-            Core {
-                a: DVec3::new(0.6, -0.5, 0.2),
-                b: DVec3::new(0.9, 0.4, 0.9),
-                radius: 0.04,
-            },
-        ];
+        let (bodies, cores) = test_bodies_and_cores();
         for body in bodies {
             let s = solid(body, DVec3::new(0.4, 0.1, 0.0));
             for core in &cores {

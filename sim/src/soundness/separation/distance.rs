@@ -80,34 +80,11 @@ pub fn nearest_at(core: &Core, solids: &[Solid], t: f64, cutoff: f64) -> (f64, N
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::{DQuat, DVec3};
+    use glam::DVec3;
 
     #[test]
     fn instant_distances_match_dense_sampling() {
-        let bodies = [
-            Body::Sphere { radius: 0.2 },
-            Body::Cuboid {
-                half: DVec3::new(0.3, 0.1, 0.2),
-                rotation: DQuat::from_rotation_z(0.4) * DQuat::from_rotation_y(0.3),
-            },
-            Body::Capsule {
-                half_length: 0.3,
-                axis: DVec3::new(0.0, 1.0, 1.0).normalize(),
-                radius: 0.05,
-            },
-        ];
-        let cores = [
-            Core {
-                a: DVec3::new(0.8, 0.3, 0.6),
-                b: DVec3::new(0.8, 0.3, 0.6),
-                radius: 0.05,
-            },
-            Core {
-                a: DVec3::new(0.6, -0.5, 0.2),
-                b: DVec3::new(0.9, 0.4, 0.9),
-                radius: 0.04,
-            },
-        ];
+        let (bodies, cores) = crate::soundness::truth::test_bodies_and_cores();
         for body in bodies {
             let s = Solid {
                 body,

@@ -754,19 +754,10 @@ impl fmt::Display for SeparationScene {
             )?;
         }
         for (k, s) in self.sensors.iter().enumerate() {
-            let o = &s.sensor;
             writeln!(
                 f,
-                "  sensor {k}: origin {:.3?} look {:.3?} {:?} range {:.2} step {:.5} ({} rays, margin {:.3}) \
-                 {:?}, {:.1} Hz from {:.3} s, grid {}x{} {:?}",
-                o.origin.to_array(),
-                o.look.to_array(),
-                o.fov,
-                o.max_range,
-                o.step,
-                o.ray_count(),
-                o.sampling_margin(),
-                o.projection,
+                "  sensor {k}: {}, {:.1} Hz from {:.3} s, grid {}x{} {:?}",
+                s.sensor.describe(),
                 s.rate,
                 s.phase,
                 s.cols,
