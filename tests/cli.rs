@@ -768,6 +768,16 @@ fn bad_guard_settings_are_named_errors() {
     fails_with(guard(&["--max-age", "nan"]), "--max-age");
     fails_with(guard(&["--max-obstacle-speed=-1"]), "max_obstacle_speed");
     fails_with(guard(&["--unobserved", "maybe"]), "--unobserved");
+    fails_with(guard(&["--sectors", "9"]), "--sectors");
+    fails_with(
+        guard(&["--sectors", "2", "--unobserved", "ignore"]),
+        "--sectors needs --unobserved stop",
+    );
+    fails_with(shroud(&["node", "fit", "--sectors", "9"]), "--sectors");
+    fails_with(
+        shroud(&["node", "fit", "--sectors", "2", "--sector-reach", "0.5"]),
+        "sector reach 0.5",
+    );
     fails_with(
         guard(&["--surrogate", "a", "--surrogate", "a"]),
         "given twice",

@@ -643,3 +643,149 @@ fn two_fit_nodes_on_different_clouds_stop_for_an_obstacle_one_of_them_saw() {
     assert_eq!(seen.verdict, shroud_msg::GuardVerdict::Stop, "{seen:?}");
     assert!(seen.min_clearance < seen.stop_distance, "{seen:?}");
 }
+
+/// A floor 2 m below a sensor looking down through a cone of 0.5 rad: the
+/// points its rays return, and the field of view its cloud states.
+fn perspective_floor() -> (Vec<[f32; 3]>, shroud_msg::FieldOfView) {
+    let fov = shroud_msg::FieldOfView {
+        apex: [0.0, 0.0, 2.0],
+        axis: [0.0, 0.0, -1.0],
+        aperture: shroud_msg::Aperture::Cone { half_angle: 0.5 },
+        max_range: 4.0,
+    };
+    let reach = 2.0 * 0.5f32.tan();
+    let points = floor(0.0, 1.2)
+        .into_iter()
+        .filter(|p| p[0].hypot(p[1]) < reach)
+        .collect();
+    (points, fov)
+}
+
+/// A fit node with `--sectors 2` publishes the whole view and its four
+/// sectors, each looking along its own axis and stating its cone; a guard
+/// with `--sectors 2` takes all five as views. A cloud that states no field
+/// of view still gets its whole view, and its sectors are a counted miss.
+#[test]
+fn a_fit_node_publishes_the_sectors_of_a_perspective_cloud_and_the_guard_reads_them() {
+    let ns = "e2e-sectors";
+    let (endpoint, session) = common::hub_on_free_port();
+    let w = wiring(&endpoint, ns);
+    let surrogates = inbox(&session, format!("shroud/{ns}/surrogate/*"));
+    let fit_status = inbox(&session, format!("shroud/{ns}/status/fit"));
+    let guard_status = inbox(&session, format!("shroud/{ns}/status/guard"));
+    let fit = Proc::start(
+        &[
+            &[
+                "node",
+                "fit",
+                "--input",
+                "cam",
+                "--grid",
+                "12x12",
+                "--side",
+                "upper",
+                "--sectors",
+                "2",
+            ][..],
+            &w,
+        ]
+        .concat(),
+    );
+    let mut args = guard_args("cam");
+    args.extend(["--sectors".into(), "2".into()]);
+    let guard = start(&args, &w);
+    let (points, fov) = perspective_floor();
+    let put = |sequence: u64, stated: bool| {
+        let mut cloud = shroud_msg::CloudView::new(
+            common::unix_ns(),
+            sequence,
+            "cam",
+            Default::default(),
+            &points,
+        );
+        if stated {
+            cloud = cloud.with_field_of_view(fov).unwrap();
+        }
+        session
+            .put(format!("shroud/{ns}/cloud/cam"), cloud.to_bytes().unwrap())
+            .timestamp(session.new_timestamp())
+            .wait()
+            .unwrap();
+    };
+    let mut keys = std::collections::BTreeMap::new();
+    let deadline = Instant::now() + LONG;
+    let mut sequence = 0;
+    while keys.len() < 5 {
+        assert!(
+            Instant::now() < deadline,
+            "surrogates seen on {:?}:\n{}\n{}",
+            keys.keys().collect::<Vec<_>>(),
+            fit.output(),
+            guard.output()
+        );
+        put(sequence, true);
+        sequence += 1;
+        let start = Instant::now();
+        while start.elapsed() < Duration::from_millis(200) {
+            let Ok(Some(sample)) = surrogates.recv_timeout(Duration::from_millis(50)) else {
+                continue;
+            };
+            let (msg, surrogate) =
+                SurrogateMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+            keys.insert(sample.key_expr().to_string(), (msg, surrogate));
+        }
+    }
+    let prefix = format!("shroud/{ns}/surrogate/");
+    let names: Vec<&str> = keys.keys().map(|k| &k[prefix.len()..]).collect();
+    assert_eq!(names, ["cam", "cam.s0", "cam.s1", "cam.s2", "cam.s3"]);
+    let whole_points = keys[&format!("{prefix}cam")].1.stats.points;
+    for (key, (msg, surrogate)) in &keys {
+        let stated = msg
+            .field_of_view
+            .expect("every view states its field of view");
+        assert_eq!(stated.apex, fov.apex, "{key}");
+        if key.ends_with("/cam") {
+            assert_eq!(stated, fov, "the whole view states the cloud's");
+            continue;
+        }
+        let shroud_msg::Aperture::Cone { half_angle } = stated.aperture else {
+            panic!("{key}: a sector is a cone")
+        };
+        assert!(half_angle < 0.5, "{key}: {half_angle}");
+        let axis = glam::DVec3::from_array(stated.axis);
+        assert!(
+            (surrogate.frame.direction - axis).length() < 1e-9,
+            "{key} looks along its axis"
+        );
+        let points = surrogate.stats.points;
+        assert!(
+            points > 20 && points < whole_points,
+            "{key}: {points} of {whole_points}"
+        );
+        assert!(surrogate.upper.as_ref().unwrap().certificate.violations == 0);
+    }
+    // A cloud without a field of view: the whole view only, and a count.
+    for _ in 0..3 {
+        put(sequence, false);
+        sequence += 1;
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    let deadline = Instant::now() + LONG;
+    loop {
+        assert!(Instant::now() < deadline, "counts:\n{}", fit.output());
+        let (Some(f), Some(g)) = (
+            status_within(&fit_status, Duration::from_millis(1100)),
+            status_within(&guard_status, Duration::from_millis(1100)),
+        ) else {
+            continue;
+        };
+        let published = f.counter("sectors_published");
+        // The guard took more surrogates than there were clouds: the
+        // sectors' views besides the whole ones.
+        if f.counter("sectors_unstated") >= 3 && g.counter("surrogates") > sequence {
+            assert!(published >= 4, "{published}");
+            assert_eq!(f.counter("sector_errors"), 0);
+            break;
+        }
+    }
+}

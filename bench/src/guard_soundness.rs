@@ -18,6 +18,8 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         parallel_rays: args.parallel_rays,
         state_field_of_view: !args.no_field_of_view,
         state_no_return: !args.no_empty_rays,
+        sectors: args.sectors,
+        sector_reach: args.sector_reach,
         ..SoundnessParams::default()
     };
     let start = Instant::now();
@@ -118,7 +120,7 @@ fn table(r: &SoundnessReport, p: &SoundnessParams, args: &BenchArgs, wall: f64) 
             format!(
                 "--cases {} --seed {} --verdicts-per-case {}; stop distance {} m, obstacle speed <= {} m/s, \
                  horizon {} s, max age {} s, {} decision times per pose, <= {} rays per sensor, \
-                 sandwich share {}, black share {}, {} rays, field of view {}, empty rays {}",
+                 sandwich share {}, black share {}, {} rays, field of view {}, empty rays {}, {}",
                 args.cases,
                 args.seed,
                 p.verdicts_per_case,
@@ -140,6 +142,10 @@ fn table(r: &SoundnessReport, p: &SoundnessParams, args: &BenchArgs, wall: f64) 
                     (true, _) => "not stated (parallel rays)",
                     (false, true) => "stated",
                     (false, false) => "not stated",
+                },
+                match p.sectors {
+                    0 => "whole views only".to_string(),
+                    n => format!("{n} x {n} sectors per view (reach {})", p.sector_reach),
                 }
             ),
         ),

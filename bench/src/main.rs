@@ -137,6 +137,15 @@ pub struct BenchArgs {
     /// interpolated across a black solid).
     #[arg(long)]
     pub no_empty_rays: bool,
+    /// Guard soundness: besides its whole view, fit each cloud that states
+    /// its field of view in N x N overlapping sectors, each along its own
+    /// axis, as fit nodes with `sectors` do (0: the whole view only).
+    #[arg(long, default_value_t = 4)]
+    pub sectors: usize,
+    /// Guard soundness: how far a sector reaches, in its grid cell's angular
+    /// half-diagonals (>= 1; never past the field of view).
+    #[arg(long, default_value_t = 1.5)]
+    pub sector_reach: f64,
     /// Guard separation: closed-loop trajectories to simulate (each seeded
     /// from --seed and its index; a failure prints its seed for --replay).
     #[arg(long, default_value_t = 10_000)]

@@ -92,13 +92,24 @@ impl Envelope {
 
     /// [`Self::shape_clearance`] for a shape and config already validated.
     pub(crate) fn clearance_unchecked(&self, shape: &Shape, config: &GuardConfig) -> f64 {
+        self.clearance_up_to(shape, config, config.max_report)
+    }
+
+    /// [`Self::clearance_unchecked`] searched only up to `cap` (at most
+    /// `config.max_report`), a lower bound in `[0, cap]`: with `cap` at or
+    /// above the stop distance, the full search's bound where that is below
+    /// `cap`, else `cap`; below it, possibly lower, as cells are then not
+    /// refined (the answer is below the stop distance anyway). Fewer cells
+    /// are looked at the smaller the cap.
+    pub(crate) fn clearance_up_to(&self, shape: &Shape, config: &GuardConfig, cap: f64) -> f64 {
+        let cap = cap.clamp(0.0, config.max_report);
         let r = shape.radius();
         let slack = self.slack(shape, config);
         match shape {
             Shape::Sphere(s) => {
                 let touches = || self.certainly_touches(s.centre, r);
                 let probe = PointProbe(self.to_frame(s.centre));
-                self.search(&probe, r, slack, config, touches)
+                self.search(&probe, r, slack, (config, cap), touches)
             }
             Shape::Capsule(c) => {
                 let touches = || self.certainly_touches(c.a, r) || self.certainly_touches(c.b, r);
@@ -106,7 +117,7 @@ impl Envelope {
                     a: self.to_frame(c.a),
                     b: self.to_frame(c.b),
                 };
-                self.search(&probe, r, slack, config, touches)
+                self.search(&probe, r, slack, (config, cap), touches)
             }
         }
     }
@@ -121,10 +132,9 @@ impl Envelope {
         probe: &P,
         radius: f64,
         slack: f64,
-        config: &GuardConfig,
+        (config, cap): (&GuardConfig, f64),
         touches: impl Fn() -> bool,
     ) -> f64 {
-        let cap = config.max_report;
         let offset = radius + slack;
         let (u, v) = probe.uv_bounds();
         let reach = cap + offset;

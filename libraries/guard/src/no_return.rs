@@ -102,6 +102,10 @@ impl DarkCones {
         };
         let (mid, half) = ((a + b) * 0.5, 0.5 * (b - a).length());
         let radius = shape.radius();
+        if cap.is_nan() || cap <= 0.0 {
+            // Nothing to find below 0 (a shape outside the field of view).
+            return 0.0;
+        }
         let mut best = cap;
         for k in 0..self.cones.len() {
             // Cheap first: the midpoint's distance less the half length.

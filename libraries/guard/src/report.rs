@@ -106,6 +106,25 @@ pub fn check_shapes(
     link_count: usize,
     config: &GuardConfig,
 ) -> Result<GuardReport, GuardError> {
+    check_shapes_counting(envelope, shapes, link_count, config, false)
+}
+
+/// [`check_shapes`], where `unseen_counts` says that the caller counts
+/// unseen space as occupied (`UnobservedPolicy::Stop`). Then what the view
+/// saw occupied is searched only up to just beyond its unseen bound, so a
+/// shape that lies outside the view (a sector's, say) costs almost nothing.
+/// Where the clearance (the nearer of the two) reaches the stop distance, it
+/// and whether unseen space set it are the same as with the full search;
+/// below the stop distance the clearance may be lower and its cause may be
+/// named `occupied` instead (cells are not refined there), which stops the
+/// arm all the same. The `occupied` distance is capped there.
+pub(crate) fn check_shapes_counting(
+    envelope: &Envelope,
+    shapes: &[WorldShape],
+    link_count: usize,
+    config: &GuardConfig,
+    unseen_counts: bool,
+) -> Result<GuardReport, GuardError> {
     config.validate()?;
     for (index, s) in shapes.iter().enumerate() {
         if s.link >= link_count {
@@ -125,15 +144,24 @@ pub fn check_shapes(
     let results = shapes
         .iter()
         .map(|s| {
-            ShapeClearance::of_view(
-                s.link,
-                envelope.clearance_unchecked(&s.shape, config),
-                envelope.unseen_clearance(&s.shape, config),
-            )
+            let unseen = envelope.unseen_clearance(&s.shape, config);
+            let occupied = if unseen_counts {
+                // Anything above `unseen` gives the same minimum and the
+                // same `unseen < occupied`.
+                let cap = unseen.max(0.0) + UNSEEN_CAP_MARGIN;
+                envelope.clearance_up_to(&s.shape, config, cap)
+            } else {
+                envelope.clearance_unchecked(&s.shape, config)
+            };
+            ShapeClearance::of_view(s.link, occupied, unseen)
         })
         .collect();
     Ok(summarise(results, link_count, config))
 }
+
+/// How far past a view's unseen bound its occupied bound is still searched
+/// (m): any positive margin keeps `unseen < occupied` exact.
+const UNSEEN_CAP_MARGIN: f64 = 1e-6;
 
 pub(crate) fn summarise(
     shapes: Vec<ShapeClearance>,

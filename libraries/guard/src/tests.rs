@@ -216,19 +216,26 @@ fn occupied_samples(sur: &Surrogate, n: usize, seed: u64) -> Vec<DVec3> {
     out
 }
 
+/// A random grid of 3 to 7 control points a side and a viewing direction
+/// that looks down more than sideways.
+fn random_grid(r: &mut rand_pcg::Pcg64) -> (usize, usize, [f64; 3]) {
+    let (cols, rows) = (r.random_range(3..8), r.random_range(3..8));
+    let direction = [
+        r.random_range(-1.0..1.0),
+        r.random_range(-1.0..1.0),
+        r.random_range(-1.0..-0.2),
+    ];
+    (cols, rows, direction)
+}
+
 /// Random bumpy surfaces in tilted frames: every reported clearance is at most
 /// the distance to every sampled occupied point, and refinement only raises it.
 #[test]
 fn clearances_never_exceed_sampled_distances() {
     let mut r = rng(21);
     for case in 0..12 {
-        let (cols, rows) = (r.random_range(3..8), r.random_range(3..8));
+        let (cols, rows, direction) = random_grid(&mut r);
         let n = cols * rows;
-        let direction = [
-            r.random_range(-1.0..1.0),
-            r.random_range(-1.0..1.0),
-            r.random_range(-1.0..-0.2),
-        ];
         let low: Vec<f64> = (0..n).map(|_| r.random_range(-1.0..0.0)).collect();
         let up: Vec<f64> = low.iter().map(|l| l + r.random_range(0.0..1.0)).collect();
         let mut trim = TrimMask::full(cols - 1, rows - 1);
@@ -283,6 +290,63 @@ fn clearances_never_exceed_sampled_distances() {
             }
         }
     }
+}
+
+/// Counting unseen space first (the guard's `UnobservedPolicy::Stop`) and
+/// searching occupied space only up to it never raises a clearance, and
+/// where the clearance reaches the stop distance it and its cause are the
+/// same as with the full search.
+#[test]
+fn searching_occupied_space_up_to_the_unseen_bound_keeps_every_clear_answer() {
+    let mut r = rng(33);
+    let (mut compared, mut far) = (0, 0);
+    for case in 0..40 {
+        let (cols, rows, direction) = random_grid(&mut r);
+        let n = cols * rows;
+        let up: Vec<f64> = (0..n).map(|_| r.random_range(-1.0..0.0)).collect();
+        let mut trim = TrimMask::full(cols - 1, rows - 1);
+        trim.bits.iter_mut().for_each(|b| {
+            *b = if r.random_bool(0.8) {
+                15
+            } else {
+                r.random_range(0..16)
+            }
+        });
+        if trim.kept_triangles() == 0 {
+            continue;
+        }
+        let sur = surrogate(direction, cols, rows, trim, Some(up), None);
+        let env = Envelope::new(&sur).unwrap();
+        let shapes: Vec<WorldShape> = (0..50)
+            .map(|_| {
+                let centre = sur.frame.to_world(DVec3::new(
+                    r.random_range(-2.0..cols as f64 + 1.0),
+                    r.random_range(-2.0..rows as f64 + 1.0),
+                    r.random_range(-1.5..1.5),
+                ));
+                WorldShape {
+                    link: 0,
+                    shape: Shape::sphere(centre, r.random_range(0.01..0.3)),
+                }
+            })
+            .collect();
+        let cfg = config(0.2, 1.0, 3);
+        let full = check_shapes(&env, &shapes, 1, &cfg).unwrap();
+        let counted = crate::report::check_shapes_counting(&env, &shapes, 1, &cfg, true).unwrap();
+        for (a, b) in full.shapes.iter().zip(&counted.shapes) {
+            assert!(
+                b.clearance <= a.clearance + 1e-12,
+                "case {case}: {b:?} > {a:?}"
+            );
+            assert_eq!(a.unseen, b.unseen);
+            if a.clearance >= cfg.stop_distance {
+                assert_eq!((a.clearance, a.unobserved), (b.clearance, b.unobserved));
+                far += 1;
+            }
+            compared += 1;
+        }
+    }
+    assert!(far > 100 && far < compared, "{far} of {compared}");
 }
 
 #[test]

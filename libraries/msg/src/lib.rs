@@ -53,7 +53,9 @@ pub use smooth::{SmoothPatchesMessage, COEFFICIENTS_PER_PATCH};
 pub use status::NodeStatusMessage;
 pub use surface::{Certificate, Domain, Side, DOMAIN_SLACK};
 pub use surrogate::{SurfaceMessage, SurrogateMessage};
-pub use topic::{check_name, Congestion, TopicKey, TopicKind, TopicQos, Topics, ROOT};
+pub use topic::{
+    check_name, sector_stream, Congestion, TopicKey, TopicKind, TopicQos, Topics, ROOT,
+};
 
 /// The schema version of every message except joint states and collision
 /// messages, which carry their own ([`JointStateMessage::VERSION`],

@@ -140,6 +140,13 @@ pub fn check_name(field: &'static str, name: &str) -> Result<(), MessageError> {
     }
 }
 
+/// The stream that carries sector `index` of the surrogates of stream
+/// `name`: a fit node with `sectors` publishes the whole view on `name` and
+/// each sector on `name.s<index>`, and a guard with `sectors` reads them.
+pub fn sector_stream(name: &str, index: usize) -> String {
+    format!("{name}.s{index}")
+}
+
 /// Builds keys of one namespace.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Topics {

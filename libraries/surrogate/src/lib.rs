@@ -17,6 +17,7 @@ mod reduction;
 #[doc(hidden)]
 pub mod samples;
 mod scattered_curve;
+mod sectors;
 pub mod tight;
 mod tighten;
 mod trial_and_error;
@@ -40,6 +41,7 @@ pub use scattered_curve::{
     fit_curve_above, fit_sorted_candidates_above, hull_per_interval, CurveWarmStart,
     ScatteredCurveFit, DEFAULT_MAX_SOLVES,
 };
+pub use sectors::{SectorFit, SectorFitError, SectorFitter};
 /// The wire vocabulary of a surface, defined with the messages so that a
 /// consumer needs no fitter to read them.
 pub use shroud_msg::{Certificate, Domain, FitStats, Histogram, Side, DOMAIN_SLACK};

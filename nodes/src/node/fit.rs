@@ -1,18 +1,21 @@
 //! The `fit` node: certified surrogates from the clouds of one stream. Its
 //! input keeps the newest `--queue` clouds; one worker fits each with warm
 //! start and publishes it, aged by the cloud's time upstream, its transit
-//! and its time here.
+//! and its time here; with `--sectors`, then each sector of the cloud's
+//! field of view on its own stream.
 
 use crate::args::SurrogateShapeArgs;
-use crate::runtime::{run_node, Arrival, NodeCommon, NodeContext};
+use crate::runtime::{run_node, Arrival, NodeCommon, NodeContext, Output};
 use crate::transport::monotonic_ns;
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::Args;
 use shroud_graph::metrics::names as metric;
 use shroud_graph::metrics::{Percentiles, SequenceGaps};
-use shroud_msg::{counted_transit, CloudMessage, CloudView, MessageError, SurrogateMessage};
+use shroud_msg::{
+    counted_transit, sector_stream, CloudMessage, CloudView, MessageError, SurrogateMessage,
+};
 use shroud_surrogate::SurrogateWire;
-use shroud_surrogate::{FitError, Sides, SurrogateFitter};
+use shroud_surrogate::{FitError, SectorFitter, Sides, SurrogateFitter};
 use std::sync::Arc;
 
 #[derive(Debug, Clone, Args)]
@@ -40,6 +43,16 @@ pub struct FitNodeArgs {
     /// synchronisation's bound.
     #[arg(long, default_value_t = 0.001)]
     pub max_clock_offset: f64,
+    /// Also fit each cloud in N x N overlapping sectors of the field of view
+    /// it states, each along its own axis, published on `<output>.s<k>`
+    /// (k = row * N + column) for a guard with the same `sectors`: tighter
+    /// than one view of a wide perspective sensor (0: the whole view only).
+    #[arg(long, default_value_t = 0)]
+    pub sectors: usize,
+    /// How far each sector reaches, in its grid cell's angular
+    /// half-diagonals (>= 1: overlapping sectors; never past the field of view).
+    #[arg(long, default_value_t = 1.5)]
+    pub sector_reach: f64,
 }
 
 /// The cloud's transit to this node as counted (see [`counted_transit`]);
@@ -62,21 +75,39 @@ fn cloud_transit(ctx: &NodeContext, arrival: &Arrival, max_offset_ns: u64) -> Op
 
 pub fn run(args: FitNodeArgs) -> Result<()> {
     let options = args.shape.options(args.side)?;
-    let fitter = SurrogateFitter::new(options)?;
+    let fitter = SurrogateFitter::new(options.clone())?;
+    let sectors = (args.sectors > 0)
+        .then(|| SectorFitter::new(args.sectors, args.sector_reach, options))
+        .transpose()
+        .context("--sectors and --sector-reach")?;
     anyhow::ensure!((1..=64).contains(&args.queue), "--queue must be 1 to 64");
     anyhow::ensure!(
         args.max_clock_offset.is_finite() && (0.0..=10.0).contains(&args.max_clock_offset),
         "--max-clock-offset must be in [0, 10] seconds"
     );
     let common = args.common.clone();
-    run_node(&common, "fit", move |ctx| serve(ctx, args, fitter))
+    run_node(&common, "fit", move |ctx| serve(ctx, args, fitter, sectors))
 }
 
-fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) -> Result<()> {
+fn serve(
+    ctx: Arc<NodeContext>,
+    args: FitNodeArgs,
+    mut fitter: SurrogateFitter,
+    sectors: Option<SectorFitter>,
+) -> Result<()> {
     let input = ctx.subscribe::<CloudMessage>(&args.input, args.queue)?;
     let output_name = args.output.as_deref().unwrap_or(&args.input);
     let output = ctx.output::<SurrogateMessage>(output_name)?;
-    tracing::info!(input = input.key(), output = output.key(), "fitting");
+    let mut sectors = sectors
+        .map(|fitter| SectorOutputs::new(&ctx, output_name, fitter))
+        .transpose()?;
+    let sector_count = sectors.as_ref().map_or(0, |s| s.outputs.len());
+    tracing::info!(
+        input = input.key(),
+        output = output.key(),
+        sectors = sector_count,
+        "fitting"
+    );
     let max_offset_ns = (args.max_clock_offset * 1e9) as u64;
     let (mut times, mut copied) = (FrameTimes::default(), Vec::new());
     input.for_each(|arrival, cloud| {
@@ -122,8 +153,85 @@ fn serve(ctx: Arc<NodeContext>, args: FitNodeArgs, mut fitter: SurrogateFitter) 
             &out,
         );
         ctx.metrics.set(metric::POINTS, points.len() as f64);
+        if let Some(sectors) = sectors.as_mut() {
+            sectors.publish(&ctx, arrival, &cloud, points, transit_ns);
+        }
     });
     Ok(())
+}
+
+/// The sectors of each cloud, fitted and published after its whole view.
+struct SectorOutputs {
+    fitter: SectorFitter,
+    outputs: Vec<Output<SurrogateMessage>>,
+    /// Whether a cloud without a field of view was logged already.
+    warned: bool,
+    /// Per sector, whether an error was logged already: a sector with no
+    /// room in the field of view fails on every cloud.
+    failed: Vec<bool>,
+}
+
+impl SectorOutputs {
+    fn new(ctx: &NodeContext, output: &str, fitter: SectorFitter) -> Result<Self> {
+        let outputs: Vec<_> = (0..fitter.count())
+            .map(|k| {
+                let name = sector_stream(output, k);
+                ctx.output::<SurrogateMessage>(&name)
+                    .with_context(|| format!("--sectors: sector stream {name:?}"))
+            })
+            .collect::<Result<_>>()?;
+        Ok(Self {
+            failed: vec![false; outputs.len()],
+            fitter,
+            outputs,
+            warned: false,
+        })
+    }
+
+    /// Fits and publishes every sector of `cloud` that holds points, each
+    /// aged like the whole view: upstream, transit, and its time here until
+    /// its own publication.
+    fn publish(
+        &mut self,
+        ctx: &NodeContext,
+        arrival: &Arrival,
+        cloud: &CloudView<'_>,
+        points: &[[f32; 3]],
+        transit_ns: u64,
+    ) {
+        let Some(fov) = cloud.field_of_view else {
+            ctx.metrics.add(metric::SECTORS_UNSTATED, 1);
+            if !std::mem::replace(&mut self.warned, true) {
+                tracing::warn!(key = %arrival.key, "the cloud states no field of view: its sectors cannot be fitted (the whole view still is)");
+            }
+            return;
+        };
+        for (index, output) in self.outputs.iter().enumerate() {
+            let start = monotonic_ns();
+            let fit = match self
+                .fitter
+                .fit(index, &fov, cloud.no_return.as_ref(), points)
+            {
+                Ok(Some(fit)) => fit,
+                Ok(None) => continue,
+                Err(e) => {
+                    ctx.metrics.add(metric::SECTOR_ERRORS, 1);
+                    if !std::mem::replace(&mut self.failed[index], true) {
+                        tracing::warn!(sequence = cloud.sequence, "{e} (logged once a sector)");
+                    }
+                    continue;
+                }
+            };
+            let fit_ns = monotonic_ns().saturating_sub(start);
+            let published = ctx.session.new_timestamp();
+            let since_ns = transit_ns.saturating_add(arrival.held_ns());
+            let mut out = SurrogateMessage::of_cloud(&fit.surrogate, cloud, fit_ns, since_ns);
+            out.field_of_view = Some(fit.field_of_view);
+            out.no_return = fit.no_return;
+            output.put_stamped(&out, published);
+            ctx.metrics.add(metric::SECTORS_PUBLISHED, 1);
+        }
+    }
 }
 
 /// Where a frame's time goes, for the node's status and `shroud topic echo`.

@@ -6,15 +6,17 @@
 use crate::arm_file::{joint_names, read_arm_file};
 use crate::runtime::{run_node, Arrival, NodeCommon, NodeContext, NodeMetrics, OnMessage, Output};
 use crate::transport::monotonic_ns;
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
+use shroud_geometry::cloud::MAX_SECTOR_GRID;
 use shroud_graph::metrics::names::{self as metric, Counter};
 use shroud_guard::{
     ArmFile, ArmMotion, CollisionGuard, Decision, Envelope, GuardPolicy, JointMotionSample,
     SpeedMonitor, StoppingModel, SurrogateInput, UnobservedPolicy,
 };
 use shroud_msg::{
-    max_skew_ns_from_secs, CollisionMessage, JointStateMessage, MessageError, SurrogateMessage,
+    max_skew_ns_from_secs, sector_stream, CollisionMessage, JointStateMessage, MessageError,
+    SurrogateMessage,
 };
 use shroud_surrogate::SurrogateWire;
 use std::path::PathBuf;
@@ -33,6 +35,11 @@ pub struct GuardArgs {
     /// `--dir`): per shape the best of the views' bounds counts.
     #[arg(long = "surrogate", default_value = "sim")]
     pub surrogates: Vec<String>,
+    /// Also read the N x N sectors of each surrogate stream
+    /// (`<name>.s<k>`, from a fit node with the same `sectors`), each a view
+    /// of its own (0: the streams alone; needs `--unobserved stop`).
+    #[arg(long, default_value_t = 0)]
+    pub sectors: usize,
     /// Joint and collision stream name (default: the arm file's name).
     #[arg(long)]
     pub arm: Option<String>,
@@ -84,13 +91,24 @@ pub fn run(args: GuardArgs) -> Result<()> {
         file.guard.max_obstacle_speed = v;
     }
     let policy = policy(&args)?;
-    if args.surrogates.len() > 1 && file.guard.max_obstacle_speed == 0.0 {
+    anyhow::ensure!(
+        args.sectors <= MAX_SECTOR_GRID,
+        "--sectors must be 0 to {MAX_SECTOR_GRID}"
+    );
+    // A sector vouches only for its cone: judged by occupied space alone, it
+    // would call free a shape beside it that another view saw blocked.
+    anyhow::ensure!(
+        args.sectors == 0 || args.unobserved == Unobserved::Stop,
+        "--sectors needs --unobserved stop: a sector says nothing outside its cone"
+    );
+    let views = view_names(&args);
+    if views.len() > 1 && file.guard.max_obstacle_speed == 0.0 {
         tracing::warn!(
             "several views and --max-obstacle-speed 0: views of different ages combine soundly only if nothing in the scene moves"
         );
     }
     let links = file.arm.links().iter().map(|l| l.name.clone()).collect();
-    let mut guard = CollisionGuard::new(args.surrogates.clone(), links, policy, file.guard)?;
+    let mut guard = CollisionGuard::new(views, links, policy, file.guard)?;
     match &file.motion {
         Some(motion) => {
             announce_speed_monitoring(&file, motion);
@@ -170,13 +188,15 @@ fn serve(
         .unwrap_or_else(|| file.arm.name().to_string());
     let guard = Arc::new(Mutex::new(guard));
     let mut views = Vec::new();
-    for (view, name) in args.surrogates.iter().enumerate() {
+    let names = view_names(&args);
+    for (view, name) in names.iter().enumerate() {
         let feed = ViewFeed {
             metrics: ctx.metrics.clone(),
             guard: guard.clone(),
             view,
         };
-        views.push(ctx.listen::<SurrogateMessage>(name, feed)?);
+        let listener = ctx.listen::<SurrogateMessage>(name, feed);
+        views.push(listener.with_context(|| format!("view {name:?}"))?);
     }
     // A stop must not be lost to congestion: the collision topic blocks
     // rather than drops, at real-time priority.
@@ -191,12 +211,23 @@ fn serve(
         verdicts,
     };
     let joints = ctx.listen::<JointStateMessage>(&arm_name, checker)?;
-    tracing::info!(views = ?args.surrogates, joints = joints.key(), %collision_key, "guarding");
+    tracing::info!(views = ?args.surrogates, sectors = args.sectors, joints = joints.key(), %collision_key, "guarding");
     while !ctx.stopping() {
         std::thread::sleep(Duration::from_millis(100));
     }
     drop(views);
     Ok(())
+}
+
+/// The streams the guard reads, one view each: every surrogate stream, then
+/// its sectors' streams.
+fn view_names(args: &GuardArgs) -> Vec<String> {
+    let sectors = args.sectors * args.sectors;
+    let mut names = args.surrogates.clone();
+    for name in &args.surrogates {
+        names.extend((0..sectors).map(|k| sector_stream(name, k)));
+    }
+    names
 }
 
 fn lock(guard: &Mutex<CollisionGuard>) -> MutexGuard<'_, CollisionGuard> {

@@ -85,6 +85,13 @@ pub struct SoundnessParams {
     /// that knows its ray grid can; the guard then counts them as unseen, so
     /// that a black solid between returns from the floor is not vouched for.
     pub state_no_return: bool,
+    /// Besides its whole view, each cloud that states its field of view is
+    /// fitted in `sectors x sectors` overlapping sectors
+    /// (`shroud_geometry::cloud::sector`), each along its own axis, as fit
+    /// nodes with `sector` settings do; 0: the whole view only.
+    pub sectors: usize,
+    /// How far a sector reaches, in its grid cell's angular half-diagonals.
+    pub sector_reach: f64,
     /// The guard's policy for unseen space. `Stop` is the guarantee under
     /// test; `Ignore` (unsound with views of different clouds) is the
     /// negative control that shows the harness catches optimism.
@@ -107,6 +114,8 @@ impl Default for SoundnessParams {
             parallel_rays: false,
             state_field_of_view: true,
             state_no_return: true,
+            sectors: 4,
+            sector_reach: 1.5,
             unobserved: UnobservedPolicy::Stop,
         }
     }
@@ -168,6 +177,21 @@ impl SoundnessParams {
         }
         if !(0.0..=1.0).contains(&self.black_share) {
             return bad("black_share", "must lie in [0, 1]", self.black_share);
+        }
+        if self.sectors > shroud_geometry::cloud::MAX_SECTOR_GRID {
+            return bad("sectors", "must lie in [0, 8]", self.sectors as f64);
+        }
+        if self.sector_reach.is_nan() || self.sector_reach < 1.0 {
+            return bad("sector_reach", "must be >= 1", self.sector_reach);
+        }
+        if self.sectors > 0 && self.unobserved == UnobservedPolicy::Ignore {
+            // As the guard node refuses it: a sector says nothing outside
+            // its cone, which only the Stop policy counts.
+            return bad(
+                "sectors",
+                "need the Stop policy for unseen space",
+                self.sectors as f64,
+            );
         }
         Ok(())
     }

@@ -17,8 +17,8 @@ use rayon::prelude::*;
 use shroud_guard::{
     check_shapes, CollisionGuard, Envelope, GuardConfig, GuardPolicy, SurrogateInput, WorldShape,
 };
-use shroud_msg::{GuardVerdict, DEFAULT_MAX_CLOCK_OFFSET_NS};
-use shroud_surrogate::{fit_surrogate, FitOptions};
+use shroud_msg::{FieldOfView, GuardVerdict, NoReturn, DEFAULT_MAX_CLOCK_OFFSET_NS};
+use shroud_surrogate::{fit_surrogate, FitOptions, SectorFitter, Surrogate};
 
 /// The guard's monotonic clock reads this at scene time 0 (ns); its wall
 /// clock reads `WALL_OFFSET_NS` more. One axis, as the brief of the harness
@@ -120,13 +120,110 @@ fn required_clearance(views: &[View], params: &SoundnessParams, t: f64) -> f64 {
     params.stop_distance + params.max_obstacle_speed * (age + params.horizon)
 }
 
-/// One sensor's contribution: its cloud and, if it could be fitted, its view.
+/// One sensor's contribution: its cloud and, if it could be fitted, its view
+/// and its sectors' views.
 struct View {
     setup: SensorSetup,
     cloud: Vec<[f32; 3]>,
     /// Its rays that returned nothing ([`Sensor::empty_rays`](super::sensors::Sensor::empty_rays)).
     empty: EmptyRayIndex,
     envelope: Option<Envelope>,
+    /// The views of its sectors that could be fitted (none unless
+    /// `params.sectors` and a stated field of view).
+    sectors: Vec<Envelope>,
+}
+
+impl View {
+    /// The whole view's envelope, then its sectors'.
+    fn envelopes(&self) -> impl Iterator<Item = &Envelope> {
+        self.envelope.iter().chain(&self.sectors)
+    }
+
+    /// The guard views it takes: the whole view's, then one per sector.
+    fn slots(&self) -> usize {
+        1 + self.sectors.len()
+    }
+}
+
+/// What a sensor's cloud states besides its points.
+struct Statement {
+    field_of_view: Option<FieldOfView>,
+    no_return: Option<NoReturn>,
+}
+
+/// The fit node's options for a sensor's views (the direction is the whole
+/// view's; each sector looks along its own axis).
+fn options_of(setup: &SensorSetup) -> FitOptions {
+    FitOptions {
+        cols: setup.cols,
+        rows: setup.rows,
+        direction: setup.sensor.look.to_array(),
+        sides: setup.sides,
+        ..FitOptions::default()
+    }
+}
+
+/// The guard's view of a surrogate with what its cloud states; `None` (the
+/// guard then has one view fewer) for an envelope error.
+fn envelope_of(
+    surrogate: &Surrogate,
+    field_of_view: Option<FieldOfView>,
+    no_return: Option<&NoReturn>,
+) -> Option<Envelope> {
+    Envelope::new(surrogate)
+        .ok()?
+        .with_field_of_view(field_of_view)
+        .ok()?
+        .with_no_return(no_return)
+        .ok()
+}
+
+/// The whole view of a sensor's cloud, fitted as the fit node would; `None`
+/// for a cloud too small or a fit error.
+fn whole_envelope(
+    cloud: &[[f32; 3]],
+    setup: &SensorSetup,
+    stated: &Statement,
+    params: &SoundnessParams,
+) -> Option<Envelope> {
+    if cloud.len() < params.min_points {
+        return None;
+    }
+    let surrogate = fit_surrogate(cloud, &options_of(setup)).ok()?;
+    envelope_of(&surrogate, stated.field_of_view, stated.no_return.as_ref())
+}
+
+/// The views of the `params.sectors x params.sectors` sectors of a cloud
+/// that states its field of view, as a fit node with `--sectors` fits them
+/// ([`SectorFitter`]); sectors with fewer than `params.min_points` points
+/// are left out, as whole clouds are.
+fn sector_envelopes(
+    cloud: &[[f32; 3]],
+    setup: &SensorSetup,
+    stated: &Statement,
+    params: &SoundnessParams,
+) -> Vec<Envelope> {
+    let Some(fov) = stated.field_of_view.filter(|_| params.sectors > 0) else {
+        return Vec::new();
+    };
+    let Ok(mut fitter) = SectorFitter::new(params.sectors, params.sector_reach, options_of(setup))
+    else {
+        return Vec::new();
+    };
+    (0..fitter.count())
+        .filter_map(|index| {
+            let fit = fitter
+                .fit(index, &fov, stated.no_return.as_ref(), cloud)
+                .ok()
+                .flatten()?;
+            (fit.surrogate.stats.points >= params.min_points as u64).then_some(())?;
+            envelope_of(
+                &fit.surrogate,
+                Some(fit.field_of_view),
+                fit.no_return.as_ref(),
+            )
+        })
+        .collect()
 }
 
 /// The scene's sensors scanned and fitted as the fit node would.
@@ -137,39 +234,27 @@ fn views_of(scene: &SoundnessScene, params: &SoundnessParams) -> Vec<View> {
         .map(|setup| {
             let scan = setup.sensor.scan(&scene.solids);
             let cloud = scan.points.clone();
-            let envelope = (cloud.len() >= params.min_points)
-                .then(|| {
-                    let options = FitOptions {
-                        cols: setup.cols,
-                        rows: setup.rows,
-                        direction: setup.sensor.look.to_array(),
-                        sides: setup.sides,
-                        ..FitOptions::default()
-                    };
-                    // A fit or envelope error leaves the sensor without a
-                    // view: the guard then simply has one view fewer.
-                    let surrogate = fit_surrogate(&cloud, &options).ok()?;
-                    let stated = params
-                        .state_field_of_view
-                        .then(|| setup.sensor.stated_field_of_view())
-                        .flatten();
-                    let no_return = params
-                        .state_no_return
-                        .then(|| setup.sensor.stated_no_return(&scan))
-                        .flatten();
-                    Envelope::new(&surrogate)
-                        .ok()?
-                        .with_field_of_view(stated)
-                        .ok()?
-                        .with_no_return(no_return.as_ref())
-                        .ok()
-                })
-                .flatten();
+            let stated = Statement {
+                field_of_view: params
+                    .state_field_of_view
+                    .then(|| setup.sensor.stated_field_of_view())
+                    .flatten(),
+                no_return: params
+                    .state_no_return
+                    .then(|| setup.sensor.stated_no_return(&scan))
+                    .flatten(),
+            };
+            let envelope = whole_envelope(&cloud, setup, &stated, params);
+            let sectors = match envelope {
+                Some(_) => sector_envelopes(&cloud, setup, &stated, params),
+                None => Vec::new(),
+            };
             View {
                 setup: *setup,
                 empty: setup.sensor.empty_rays(&scan),
                 cloud,
                 envelope,
+                sectors,
             }
         })
         .collect()
@@ -211,8 +296,22 @@ fn prepare(
         unobserved: params.unobserved,
         ..GuardPolicy::default()
     };
-    let names = (0..views.len()).map(|k| format!("sensor{k}")).collect();
+    // Guard views per sensor: its whole view (held even when it could not
+    // be fitted, so that the guard has a view per sensor), then its sectors.
+    let names = views
+        .iter()
+        .enumerate()
+        .flat_map(|(k, v)| (0..v.slots()).map(move |j| format!("sensor{k}.{j}")))
+        .collect();
     let mut guard = CollisionGuard::new(names, links, policy, config)?;
+    let first_slot: Vec<usize> = views
+        .iter()
+        .scan(0, |next, v| {
+            let first = *next;
+            *next += v.slots();
+            Some(first)
+        })
+        .collect();
     let mut order: Vec<usize> = (0..views.len()).collect();
     order.sort_by(|&a, &b| {
         views[a]
@@ -221,21 +320,23 @@ fn prepare(
             .total_cmp(&views[b].setup.arrival())
     });
     for &k in &order {
-        let Some(envelope) = &views[k].envelope else {
-            continue;
-        };
         let s = &views[k].setup;
-        let input = SurrogateInput {
-            envelope: envelope.clone(),
-            stamp_ns: wall_ns(s.sensor.time),
-            sequence: k as u64,
-            pipeline_ns: (s.pipeline * 1e9).round() as u64,
-            published_ns: wall_ns(s.sensor.time + s.pipeline),
-            position_error: 0.0,
-        };
-        // On one clock axis nothing is refused; a refusal would show as
-        // verdicts without that view, which the truth check still judges.
-        let _ = guard.accept(k, input, mono_ns(s.arrival()), wall_ns(s.arrival()));
+        let whole = views[k].envelope.iter().map(|e| (0, e));
+        let sectors = views[k].sectors.iter().enumerate().map(|(j, e)| (j + 1, e));
+        for (j, envelope) in whole.chain(sectors) {
+            let input = SurrogateInput {
+                envelope: envelope.clone(),
+                stamp_ns: wall_ns(s.sensor.time),
+                sequence: k as u64,
+                pipeline_ns: (s.pipeline * 1e9).round() as u64,
+                published_ns: wall_ns(s.sensor.time + s.pipeline),
+                position_error: 0.0,
+            };
+            // On one clock axis nothing is refused; a refusal would show as
+            // verdicts without that view, which the truth check still judges.
+            let slot = first_slot[k] + j;
+            let _ = guard.accept(slot, input, mono_ns(s.arrival()), wall_ns(s.arrival()));
+        }
     }
     let last_arrival = views.iter().map(|v| v.setup.arrival()).fold(0.0, f64::max);
     Ok(Prepared {
@@ -447,8 +548,8 @@ impl Context<'_> {
             .views
             .iter()
             .enumerate()
-            .filter_map(|(k, v)| {
-                let envelope = v.envelope.as_ref()?;
+            .flat_map(|(k, v)| v.envelopes().map(move |e| (k, v, e)))
+            .filter_map(|(k, v, envelope)| {
                 let age = t - v.setup.sensor.time + clock_offset;
                 if age > self.params.max_age {
                     return None;

@@ -8,6 +8,7 @@ mod no_return;
 mod normals;
 mod plane;
 mod point_cloud;
+mod sectors;
 
 pub use point_cloud::validate_points;
 
@@ -21,3 +22,6 @@ pub use normals::{
 };
 pub use plane::{fit_plane, symmetric_eigen3, Plane, PlaneFit};
 pub use point_cloud::{CloudError, PointCloud};
+pub use sectors::{
+    check_sectors, no_return_in_sector, points_in_sector, sector, SectorError, MAX_SECTOR_GRID,
+};

@@ -106,6 +106,21 @@ pub const FIT_ERRORS: Counter = counter(
     &[Fit, Smooth],
     "clouds the fitter could not fit (logged)",
 );
+pub const SECTORS_PUBLISHED: Counter = counter(
+    "sectors_published",
+    &[Fit],
+    "sector surrogates published (with `sectors`)",
+);
+pub const SECTORS_UNSTATED: Counter = counter(
+    "sectors_unstated",
+    &[Fit],
+    "clouds whose sectors could not be fitted: the cloud states no field of view (logged once)",
+);
+pub const SECTOR_ERRORS: Counter = counter(
+    "sector_errors",
+    &[Fit],
+    "sectors not fitted: no room in the field of view, or the fitter refused its points (logged)",
+);
 pub const POINTS: Gauge = gauge(
     "points",
     &[Scanner, Fit, Blend],
@@ -424,6 +439,9 @@ pub const COUNTERS: &[Counter] = &[
     CLOCK_SKEW,
     NO_PUBLISH_STAMP,
     FIT_ERRORS,
+    SECTORS_PUBLISHED,
+    SECTORS_UNSTATED,
+    SECTOR_ERRORS,
     SURROGATES,
     STOPS,
     HALTS,

@@ -4,7 +4,8 @@ use super::combine::{combine, ViewReport};
 use super::policy::{GuardPolicy, UnobservedPolicy};
 use super::speed_control::SpeedControl;
 use super::view::{check_skew, HeldSurrogate, SurrogateInput, SurrogateRejected};
-use crate::{check_shapes, GuardConfig, GuardError, GuardReport, SpeedScale, WorldShape};
+use crate::report::check_shapes_counting;
+use crate::{GuardConfig, GuardError, GuardReport, SpeedScale, WorldShape};
 use shroud_msg::{counted_transit, CollisionMessage, GuardVerdict, LinkClearance};
 
 /// The guard's state: per view its latest accepted surrogate.
@@ -199,7 +200,10 @@ impl CollisionGuard {
                     + h.input.position_error.min(self.config.max_report),
                 ..self.config
             };
-            let report = check_shapes(&h.input.envelope, shapes, self.links.len(), &config)?;
+            let unseen_counts = self.policy.unobserved == UnobservedPolicy::Stop;
+            let links = self.links.len();
+            let envelope = &h.input.envelope;
+            let report = check_shapes_counting(envelope, shapes, links, &config, unseen_counts)?;
             reports.push(ViewReport {
                 report,
                 allowance: self.allowance(h, now_ns),
