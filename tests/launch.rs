@@ -555,3 +555,62 @@ fn the_cell_demo_slows_stops_and_resumes_the_arm_as_the_person_passes() {
     );
     drop(launcher);
 }
+
+/// `launch/camera.toml`: the fit node publishes the whole view and its 16
+/// sectors, each stating a cone inside the camera's field of view, the
+/// guard takes them all as views, and the arm gets `clear` verdicts.
+#[test]
+fn the_camera_launch_guards_with_the_sectors_of_its_view() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/launch/camera.toml");
+    let mut launcher = Proc::start(&["launch", file, "--duration", "15"]);
+    let session = client_of(&endpoint_of(&launcher));
+    let surrogates = session
+        .declare_subscriber("shroud/camera/surrogate/*")
+        .wait()
+        .unwrap();
+    let verdicts = session
+        .declare_subscriber("shroud/camera/collision/demo_arm")
+        .wait()
+        .unwrap();
+    let guard_status = session
+        .declare_subscriber("shroud/camera/status/guard")
+        .wait()
+        .unwrap();
+    let mut streams = std::collections::BTreeSet::new();
+    let (mut clears, mut accepted) = (0, 0);
+    let start = Instant::now();
+    while start.elapsed() < Duration::from_secs(12) {
+        while let Ok(Some(sample)) = surrogates.try_recv() {
+            let msg = SurrogateMessage::decode(&sample.payload().to_bytes()).unwrap();
+            let fov = msg
+                .field_of_view
+                .expect("the camera states its field of view");
+            let key = sample.key_expr().as_str().to_owned();
+            if key.contains(".s") {
+                assert!(
+                    matches!(fov.aperture, shroud_msg::Aperture::Cone { .. }),
+                    "{key}: {fov:?}"
+                );
+            }
+            streams.insert(key);
+        }
+        while let Ok(Some(sample)) = guard_status.try_recv() {
+            let status = NodeStatusMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+            accepted = accepted.max(status.counter("surrogates"));
+        }
+        if let Ok(Some(sample)) = verdicts.recv_timeout(Duration::from_millis(100)) {
+            clears += usize::from(!collision(&sample).stop);
+        }
+    }
+    // The whole view and at least most sectors (a corner of the view may see
+    // too little to fit).
+    assert!(
+        streams.contains("shroud/camera/surrogate/camera"),
+        "{streams:?}"
+    );
+    assert!(streams.len() >= 12, "{streams:?}");
+    assert!(clears > 0, "no clear verdict:\n{}", launcher.output());
+    // At 10 clouds a second for about ten seconds, far more than one view each.
+    assert!(accepted > 400, "the guard accepted {accepted} surrogates");
+    assert!(launcher.wait_exit(LONG).success(), "{}", launcher.output());
+}
