@@ -11,6 +11,7 @@ mod error;
 mod file;
 mod kind;
 mod load;
+mod sectors;
 mod wiring;
 
 pub use backoff::{Backoff, RestartDecision};

@@ -5,6 +5,7 @@
 use super::error::LaunchError;
 use super::file::{LaunchFile, NodeSpec, StreamNames};
 use super::kind::{Direction, FlagStyle, Port};
+use super::sectors::check_sectors_match;
 use shroud_msg::{check_name, TopicKind};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -344,7 +345,12 @@ fn producers<'a>(
 
 /// The graph's checks: ports, shared options, one producer per stream (blend
 /// commands may have several, `external` among them), a producer for every
-/// input.
+/// input, and a guard's `sectors` the same as its fit nodes'.
 pub fn check_graph(file: &LaunchFile) -> Result<(), LaunchError> {
-    file.edges().map(|_| ())
+    for edge in file.edges()? {
+        if let Source::Node(writer) = edge.from {
+            check_sectors_match(edge.to, writer, &edge.stream)?;
+        }
+    }
+    Ok(())
 }
