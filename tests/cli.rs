@@ -773,6 +773,10 @@ fn bad_guard_settings_are_named_errors() {
         guard(&["--sectors", "2", "--unobserved", "ignore"]),
         "--sectors needs --unobserved stop",
     );
+    fails_with(
+        guard(&["--surrogate", "cam.s3", "--unobserved", "ignore"]),
+        "is a sector's stream",
+    );
     fails_with(shroud(&["node", "fit", "--sectors", "9"]), "--sectors");
     fails_with(
         shroud(&["node", "fit", "--sectors", "2", "--sector-reach", "0.5"]),

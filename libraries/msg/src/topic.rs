@@ -147,6 +147,28 @@ pub fn sector_stream(name: &str, index: usize) -> String {
     format!("{name}.s{index}")
 }
 
+/// Whether `name` is named as a sector's stream ([`sector_stream`]): it ends
+/// in `.s` and digits.
+pub fn is_sector_stream(name: &str) -> bool {
+    name.rsplit_once(".s").is_some_and(|(base, index)| {
+        !base.is_empty() && !index.is_empty() && index.bytes().all(|b| b.is_ascii_digit())
+    })
+}
+
+#[cfg(test)]
+mod sector_stream_tests {
+    use super::*;
+
+    #[test]
+    fn sector_streams_are_named_and_recognised() {
+        assert_eq!(sector_stream("cam", 3), "cam.s3");
+        assert!(is_sector_stream(&sector_stream("front.cam", 15)));
+        for name in ["cam", "cam.s", "cam.sx", ".s3", "cam.s3b", "cams3"] {
+            assert!(!is_sector_stream(name), "{name}");
+        }
+    }
+}
+
 /// Builds keys of one namespace.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Topics {

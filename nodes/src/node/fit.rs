@@ -47,7 +47,7 @@ pub struct FitNodeArgs {
     /// it states, each along its own axis, published on `<output>.s<k>`
     /// (k = row * N + column) for a guard with the same `sectors`: tighter
     /// than one view of a wide perspective sensor (0: the whole view only).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(0..=8))]
     pub sectors: usize,
     /// How far each sector reaches, in its grid cell's angular
     /// half-diagonals (>= 1: overlapping sectors; never past the field of view).

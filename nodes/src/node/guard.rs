@@ -15,8 +15,8 @@ use shroud_guard::{
     SpeedMonitor, StoppingModel, SurrogateInput, UnobservedPolicy,
 };
 use shroud_msg::{
-    max_skew_ns_from_secs, sector_stream, CollisionMessage, JointStateMessage, MessageError,
-    SurrogateMessage,
+    is_sector_stream, max_skew_ns_from_secs, sector_stream, CollisionMessage, JointStateMessage,
+    MessageError, SurrogateMessage,
 };
 use shroud_surrogate::SurrogateWire;
 use std::path::PathBuf;
@@ -38,7 +38,7 @@ pub struct GuardArgs {
     /// Also read the N x N sectors of each surrogate stream
     /// (`<name>.s<k>`, from a fit node with the same `sectors`), each a view
     /// of its own (0: the streams alone; needs `--unobserved stop`).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(0..=8))]
     pub sectors: usize,
     /// Joint and collision stream name (default: the arm file's name).
     #[arg(long)]
@@ -101,6 +101,12 @@ pub fn run(args: GuardArgs) -> Result<()> {
         args.sectors == 0 || args.unobserved == Unobserved::Stop,
         "--sectors needs --unobserved stop: a sector says nothing outside its cone"
     );
+    if let Some(name) = args.surrogates.iter().find(|n| is_sector_stream(n)) {
+        anyhow::ensure!(
+            args.unobserved == Unobserved::Stop,
+            "--surrogate {name} is a sector's stream: it needs --unobserved stop (a sector says nothing outside its cone)"
+        );
+    }
     let views = view_names(&args);
     if views.len() > 1 && file.guard.max_obstacle_speed == 0.0 {
         tracing::warn!(

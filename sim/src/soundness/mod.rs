@@ -88,7 +88,7 @@ pub struct SoundnessParams {
     /// Besides its whole view, each cloud that states its field of view is
     /// fitted in `sectors x sectors` overlapping sectors
     /// (`shroud_geometry::cloud::sector`), each along its own axis, as fit
-    /// nodes with `sector` settings do; 0: the whole view only.
+    /// nodes with `sectors` settings do; 0: the whole view only.
     pub sectors: usize,
     /// How far a sector reaches, in its grid cell's angular half-diagonals.
     pub sector_reach: f64,

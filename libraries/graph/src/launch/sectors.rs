@@ -9,13 +9,33 @@ use super::file::NodeSpec;
 use super::kind::NodeKind;
 use std::fmt::Display;
 
-/// A node's `sectors` setting: 0 when absent (the node's default) or not an
-/// integer (the node's own parser names that value before anything starts).
-fn sectors_of(node: &NodeSpec) -> i64 {
-    node.settings
-        .get("sectors")
-        .and_then(toml::Value::as_integer)
-        .unwrap_or(0)
+/// A node's `sectors` setting: 0 when absent (the node's default), `None`
+/// when it is not an integer (the node's own parser names that value before
+/// anything starts).
+fn sectors_of(node: &NodeSpec) -> Option<i64> {
+    match node.settings.get("sectors") {
+        None => Some(0),
+        Some(toml::Value::Integer(n)) => Some(*n),
+        Some(toml::Value::String(s)) => s.trim().parse().ok(),
+        Some(_) => None,
+    }
+}
+
+/// Refuses a guard that reads sectors while ignoring unseen space: a sector
+/// says nothing outside its cone, so judged by occupied space alone it would
+/// call free what another view saw blocked.
+pub(super) fn check_sectors_policy(node: &NodeSpec) -> Result<(), LaunchError> {
+    let ignores = node
+        .settings
+        .get("unobserved")
+        .and_then(toml::Value::as_str)
+        == Some("ignore");
+    if node.kind == NodeKind::Guard && ignores && sectors_of(node).is_some_and(|n| n != 0) {
+        return Err(node.error(
+            "sectors need unobserved = \"stop\": a sector says nothing outside its cone".into(),
+        ));
+    }
+    Ok(())
 }
 
 /// Refuses a guard that reads `stream` from a fit node with another
@@ -28,7 +48,9 @@ pub(super) fn check_sectors_match(
     if reader.kind != NodeKind::Guard || writer.kind != NodeKind::Fit {
         return Ok(());
     }
-    let (reads, fits) = (sectors_of(reader), sectors_of(writer));
+    let (Some(reads), Some(fits)) = (sectors_of(reader), sectors_of(writer)) else {
+        return Ok(());
+    };
     if reads == fits {
         return Ok(());
     }
@@ -64,6 +86,12 @@ mod tests {
     #[test]
     fn a_guard_and_its_fit_node_must_agree_on_sectors() {
         assert_eq!(check(&graph("sectors = 4", ", sectors = 4")), Ok(()));
+        assert_eq!(check(&graph("sectors = \"4\"", ", sectors = 4")), Ok(()));
+        let ignoring = check(&graph(
+            "sectors = 2",
+            ", sectors = 2, unobserved = \"ignore\"",
+        ));
+        assert!(ignoring.unwrap_err().contains("sectors need unobserved"));
         assert_eq!(check(&graph("", "")), Ok(()));
         for (fit, guard, reads, fits) in [
             ("sectors = 4", "", 0, 4),

@@ -5,7 +5,7 @@
 use super::error::LaunchError;
 use super::file::{LaunchFile, NodeSpec, StreamNames};
 use super::kind::{Direction, FlagStyle, Port};
-use super::sectors::check_sectors_match;
+use super::sectors::{check_sectors_match, check_sectors_policy};
 use shroud_msg::{check_name, TopicKind};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -345,8 +345,10 @@ fn producers<'a>(
 
 /// The graph's checks: ports, shared options, one producer per stream (blend
 /// commands may have several, `external` among them), a producer for every
-/// input, and a guard's `sectors` the same as its fit nodes'.
+/// input, and a guard's `sectors` the same as its fit nodes' (and only under
+/// the Stop policy for unseen space).
 pub fn check_graph(file: &LaunchFile) -> Result<(), LaunchError> {
+    file.nodes.iter().try_for_each(check_sectors_policy)?;
     for edge in file.edges()? {
         if let Source::Node(writer) = edge.from {
             check_sectors_match(edge.to, writer, &edge.stream)?;

@@ -119,7 +119,7 @@ pub const SECTORS_UNSTATED: Counter = counter(
 pub const SECTOR_ERRORS: Counter = counter(
     "sector_errors",
     &[Fit],
-    "sectors not fitted: no room in the field of view, or the fitter refused its points (logged)",
+    "sectors not fitted: no room in the field of view, or the fitter refused its points (logged once per sector)",
 );
 pub const POINTS: Gauge = gauge(
     "points",

@@ -15,7 +15,8 @@ pub enum UnobservedPolicy {
     Stop,
     /// Judge by the occupied space seen alone, as if the sensors had seen
     /// everything (only for scenes known to be empty where they did not
-    /// look, and only with views of one cloud); still flagged per link.
+    /// look, and only with whole views of one cloud: never with sectors,
+    /// which say nothing outside their cones); still flagged per link.
     Ignore,
 }
 
