@@ -4,6 +4,7 @@
 
 use super::arms::ArmKind;
 use shroud_guard::Shape;
+use shroud_msg::GuardVerdict;
 use shroud_surrogate::Sides;
 use std::fmt;
 
@@ -21,6 +22,17 @@ pub struct VerdictCounts {
 }
 
 impl VerdictCounts {
+    /// Counts one verdict under its kind (`no-verdict` as a stop).
+    pub fn count(&mut self, verdict: GuardVerdict) {
+        match verdict {
+            GuardVerdict::Clear => self.clear += 1,
+            GuardVerdict::Stop | GuardVerdict::NoVerdict => self.stop += 1,
+            GuardVerdict::Unobserved => self.unobserved += 1,
+            GuardVerdict::Stale => self.stale += 1,
+            GuardVerdict::NoSurrogate => self.no_surrogate += 1,
+        }
+    }
+
     pub fn total(&self) -> u64 {
         self.clear + self.stop + self.unobserved + self.stale + self.no_surrogate
     }

@@ -391,14 +391,7 @@ pub fn run_case(
                 .min_by(|a, b| a.1 .0.total_cmp(&b.1 .0))
                 .map(|(i, t)| (i, *t))
                 .unwrap_or((0, (f64::INFINITY, None)));
-            let counts = &mut report.verdicts;
-            match decision.verdict {
-                GuardVerdict::Clear => counts.clear += 1,
-                GuardVerdict::Stop | GuardVerdict::NoVerdict => counts.stop += 1,
-                GuardVerdict::Unobserved => counts.unobserved += 1,
-                GuardVerdict::Stale => counts.stale += 1,
-                GuardVerdict::NoSurrogate => counts.no_surrogate += 1,
-            }
+            report.verdicts.count(decision.verdict);
             let judged = matches!(
                 decision.verdict,
                 GuardVerdict::Clear | GuardVerdict::Stop | GuardVerdict::Unobserved

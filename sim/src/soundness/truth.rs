@@ -61,7 +61,7 @@ impl Core {
 }
 
 /// Minimum of a convex function on `[0, 1]`, evaluated at real points.
-fn golden_min(f: impl Fn(f64) -> f64) -> f64 {
+pub(super) fn golden_min(f: impl Fn(f64) -> f64) -> f64 {
     let g = (5f64.sqrt() - 1.0) / 2.0;
     let (mut lo, mut hi) = (0.0, 1.0);
     let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));

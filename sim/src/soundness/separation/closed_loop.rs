@@ -525,14 +525,7 @@ impl<'a> Sim<'a> {
                     age_ns: now - sample.at_ns,
                 };
                 let decision = self.guard.decide_moving(&pose.shapes, joints, mono(now))?;
-                let counts = &mut self.out.counts;
-                match decision.verdict {
-                    GuardVerdict::Clear => counts.clear += 1,
-                    GuardVerdict::Stop | GuardVerdict::NoVerdict => counts.stop += 1,
-                    GuardVerdict::Unobserved => counts.unobserved += 1,
-                    GuardVerdict::Stale => counts.stale += 1,
-                    GuardVerdict::NoSurrogate => counts.no_surrogate += 1,
-                }
+                self.out.counts.count(decision.verdict);
                 let clear = decision.verdict == GuardVerdict::Clear;
                 let scale = decision.speed.scale;
                 let answer = match self.mode {

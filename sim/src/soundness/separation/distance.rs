@@ -10,31 +10,7 @@
 //! by at most the final bracket, `0.618^60` of the segment, below 1e-12 m).
 
 use super::super::solids::{point_segment_distance, Body, Solid};
-use super::super::truth::{floor_clearance, Core};
-
-const GOLDEN_STEPS: usize = 60;
-
-/// Minimum of a convex function on `[0, 1]`, evaluated at real points.
-fn golden_min(f: impl Fn(f64) -> f64) -> f64 {
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut lo, mut hi) = (0.0, 1.0);
-    let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..GOLDEN_STEPS {
-        if f1 <= f2 {
-            hi = x2;
-            (x2, f2) = (x1, f1);
-            x1 = hi - g * (hi - lo);
-            f1 = f(x1);
-        } else {
-            lo = x1;
-            (x1, f1) = (x2, f2);
-            x2 = lo + g * (hi - lo);
-            f2 = f(x2);
-        }
-    }
-    f1.min(f2).min(f(0.0)).min(f(1.0))
-}
+use super::super::truth::{floor_clearance, golden_min, Core};
 
 /// Distance from the shape `core` to `solid` at time `t`, less the core's
 /// radius (negative: they overlap). Pairs whose bounding balls are further
