@@ -65,4 +65,10 @@ targets! {
     driver_benewake,
     driver_ars408,
     driver_benewake_can,
+    ros2_point_cloud2,
+    ros2_joint_state,
+    ros2_marker_array,
+    ros2_messages,
+    ros2_liveliness_token,
+    ros2_attachment,
 }

@@ -4,8 +4,9 @@
 //! messages are laid out as MCAP schemas and channels ([`layout`]), when a chunk
 //! or a file ends ([`ChunkPolicy`], [`SplitPolicy`]), what is dropped when the
 //! disk is slow or full ([`ByteQueue`], [`DiskReserve`], [`DropCounts`]), and
-//! when a replayed message is due ([`ReplaySchedule`]), and how a recording's
-//! bytes are read back, truncated or not ([`read_records`]). Files and zenoh
+//! when a replayed message is due ([`ReplaySchedule`]), how a recording's
+//! bytes are read back, truncated or not ([`read_records`]), and how ROS 2
+//! recordings (rosbag2) map to shroud's streams and back ([`ros2`]). Files and zenoh
 //! live in `shroud-nodes`.
 
 mod chunk;
@@ -17,6 +18,7 @@ pub mod layout;
 mod queue;
 mod read;
 mod rollover;
+pub mod ros2;
 mod schedule;
 
 pub use drops::{DiskReserve, DropCause, DropCounts};

@@ -6,6 +6,7 @@ mod can_device;
 mod device;
 mod emulator;
 mod mount;
+mod ros_cloud;
 mod smooth;
 mod surrogate;
 mod viewer;
@@ -18,6 +19,7 @@ pub use can_device::{
 pub use device::{DeviceArgs, DeviceKind, RplidarScan, ScipScan};
 pub use emulator::EmulatorArgs;
 pub use mount::{CloudArgs, MountArgs, MountAxis};
+pub use ros_cloud::RosCloudArgs;
 pub use smooth::{DomainKind, SmoothDomainArgs};
 pub use surrogate::SurrogateShapeArgs;
 pub use viewer::{ViewLimits, ViewerArgs, ViewerSettings};

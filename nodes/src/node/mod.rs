@@ -12,6 +12,7 @@ mod fit;
 mod foxglove_bridge;
 mod guard;
 mod list;
+mod ros2;
 mod scan_publisher;
 mod scanner;
 mod serial;
@@ -28,6 +29,7 @@ pub use fit::FitNodeArgs;
 pub use foxglove_bridge::FoxgloveArgs;
 pub use guard::GuardArgs;
 pub use list::NodeListArgs;
+pub use ros2::Ros2Args;
 pub use scanner::ScannerArgs;
 pub use serial::SerialNodeArgs;
 pub use smooth::SmoothNodeArgs;
@@ -59,6 +61,8 @@ pub enum NodeCommand {
     Dashboard(DashboardArgs),
     /// The Foxglove WebSocket bridge: the graph in Foxglove or Lichtblick, drops from their Publish panel.
     Foxglove(FoxgloveArgs),
+    /// Join a ROS 2 system over rmw_zenoh: PointCloud2 and JointState in; verdicts, markers and clouds out.
+    Ros2(Ros2Args),
     /// Record the namespace's messages into an MCAP file (as `shroud record`).
     Record(crate::recording::RecordArgs),
     /// Publish an MCAP recording's shroud messages, in place of a sensor (as `shroud replay`).
@@ -80,6 +84,7 @@ pub fn run(command: NodeCommand) -> Result<()> {
         NodeCommand::Smooth(args) => smooth::run(args),
         NodeCommand::Dashboard(args) => dashboard::run(args),
         NodeCommand::Foxglove(args) => foxglove_bridge::run(args),
+        NodeCommand::Ros2(args) => ros2::run(args),
         NodeCommand::Record(args) => crate::recording::record(args),
         NodeCommand::Replay(args) => crate::recording::replay(args),
         NodeCommand::List(args) => list::run(args),

@@ -1,12 +1,17 @@
 //! One MCAP file being written: the `mcap` crate's writer over a buffered
 //! file, shroud's schemas and channels (`shroud-record`'s [`layout`]) and those of the
 //! Foxglove views added on first use,
-//! a sequence per channel, and the bytes and messages written so far.
+//! a sequence per channel, and the bytes and messages written so far; with
+//! `--ros2`, also the ROS 2 file beside it (`<stem>.ros2.mcap`: CDR channels
+//! with `ros2msg` schemas only, which rosbags and `ros2 bag play` read).
 
 use super::views::View;
 use anyhow::{Context, Result};
 use shroud_msg::{TopicKey, TopicKind};
 use shroud_record::layout::{self, MESSAGE_ENCODING, RECORDING_METADATA};
+use shroud_record::ros2::{
+    ros2_path, RosChannel, ROS2_MESSAGE_ENCODING, ROS2_PROFILE, ROS2_SCHEMA_ENCODING,
+};
 use std::collections::{BTreeMap, HashMap};
 use std::fs::File;
 use std::io::{BufWriter, Seek, SeekFrom, Write};
@@ -32,11 +37,13 @@ pub struct FileOptions {
     pub metadata: BTreeMap<String, String>,
     /// Replace existing files (else an existing file is an error).
     pub overwrite: bool,
+    /// Also write the ROS 2 file beside each file (`--ros2`).
+    pub ros2: bool,
 }
 
 pub struct McapFile {
     path: PathBuf,
-    writer: mcap::Writer<Counting<BufWriter<File>>>,
+    writer: mcap::Writer<Sink>,
     schemas: HashMap<TopicKind, u16>,
     /// The Foxglove schemas of `--foxglove` views, by name.
     view_schemas: HashMap<String, u16>,
@@ -44,38 +51,95 @@ pub struct McapFile {
     messages: u64,
     /// The sink's byte count (`mcap::Writer` does not lend its sink).
     len: Arc<AtomicU64>,
+    ros2: Option<Ros2File>,
+}
+
+type Sink = Counting<BufWriter<File>>;
+
+/// The ROS 2 file beside the recording's (`--ros2`): its channels by topic
+/// with their next sequence, and its byte count.
+struct Ros2File {
+    path: PathBuf,
+    writer: mcap::Writer<Sink>,
+    channels: HashMap<String, (u16, u32)>,
+    len: Arc<AtomicU64>,
+}
+
+/// Writes a message of `channel_id` (its `sequence`) at `(log, publish)`
+/// times into `path`'s writer.
+fn put(
+    writer: &mut mcap::Writer<Sink>,
+    path: &Path,
+    (channel_id, sequence): (u16, u32),
+    (log_time, publish_time): (u64, u64),
+    data: &[u8],
+) -> Result<()> {
+    let header = mcap::records::MessageHeader {
+        channel_id,
+        sequence,
+        log_time,
+        publish_time,
+    };
+    writer
+        .write_to_known_channel(&header, data)
+        .with_context(|| format!("cannot write to {}", path.display()))
+}
+
+/// Creates `path` (refusing an existing file unless `overwrite`) and starts
+/// an MCAP writer of `profile` on it.
+fn start_file(
+    path: &Path,
+    options: &FileOptions,
+    profile: &str,
+) -> Result<(mcap::Writer<Sink>, Arc<AtomicU64>)> {
+    // A split file that exists is not replaced either (`--overwrite`).
+    let file = std::fs::OpenOptions::new()
+        .write(true)
+        .create(true)
+        .truncate(true)
+        .create_new(!options.overwrite)
+        .open(path)
+        .map_err(|e| match e.kind() {
+            std::io::ErrorKind::AlreadyExists => {
+                anyhow::anyhow!("{} exists (give --overwrite to replace it)", path.display())
+            }
+            _ => anyhow::Error::new(e).context(format!("cannot create {}", path.display())),
+        })?;
+    let (sink, len) = Counting::new(BufWriter::with_capacity(1 << 20, file));
+    // Chunks are closed by the recorder (`ChunkPolicy`), never by size
+    // inside the crate, so that free space is checked before each one.
+    // Each chunk is built in memory and written whole: when seeking, the
+    // crate streams a chunk behind a placeholder header that it patches
+    // at the chunk's end, and a recorder killed mid-chunk would leave a
+    // header whose lengths lie (the reader then fails on it) instead of
+    // a file that merely stops early.
+    let writer = mcap::WriteOptions::new()
+        .compression(options.compression)
+        .chunk_size(None)
+        .disable_seeking(true)
+        .profile(profile)
+        .library(format!("shroud {}", env!("CARGO_PKG_VERSION")))
+        .create(sink)
+        .with_context(|| format!("cannot start {}", path.display()))?;
+    Ok((writer, len))
 }
 
 impl McapFile {
     pub fn create(path: &Path, options: &FileOptions) -> Result<Self> {
-        // A split file that exists is not replaced either (`--overwrite`).
-        let file = std::fs::OpenOptions::new()
-            .write(true)
-            .create(true)
-            .truncate(true)
-            .create_new(!options.overwrite)
-            .open(path)
-            .map_err(|e| match e.kind() {
-                std::io::ErrorKind::AlreadyExists => {
-                    anyhow::anyhow!("{} exists (give --overwrite to replace it)", path.display())
-                }
-                _ => anyhow::Error::new(e).context(format!("cannot create {}", path.display())),
-            })?;
-        let (sink, len) = Counting::new(BufWriter::with_capacity(1 << 20, file));
-        // Chunks are closed by the recorder (`ChunkPolicy`), never by size
-        // inside the crate, so that free space is checked before each one.
-        // Each chunk is built in memory and written whole: when seeking, the
-        // crate streams a chunk behind a placeholder header that it patches
-        // at the chunk's end, and a recorder killed mid-chunk would leave a
-        // header whose lengths lie (the reader then fails on it) instead of
-        // a file that merely stops early.
-        let mut writer = mcap::WriteOptions::new()
-            .compression(options.compression)
-            .chunk_size(None)
-            .disable_seeking(true)
-            .library(format!("shroud {}", env!("CARGO_PKG_VERSION")))
-            .create(sink)
-            .with_context(|| format!("cannot start {}", path.display()))?;
+        let (mut writer, len) = start_file(path, options, "")?;
+        let ros2 = match options.ros2 {
+            true => {
+                let ros_path = ros2_path(path);
+                let (writer, len) = start_file(&ros_path, options, ROS2_PROFILE)?;
+                Some(Ros2File {
+                    path: ros_path,
+                    writer,
+                    channels: HashMap::new(),
+                    len,
+                })
+            }
+            false => None,
+        };
         writer
             .write_metadata(&mcap::records::Metadata {
                 name: RECORDING_METADATA.to_owned(),
@@ -90,6 +154,7 @@ impl McapFile {
             channels: HashMap::new(),
             messages: 0,
             len,
+            ros2,
         })
     }
 
@@ -97,9 +162,67 @@ impl McapFile {
         &self.path
     }
 
-    /// Bytes handed to the file so far (buffered or written).
+    /// Bytes handed to the file (and its ROS 2 file) so far (buffered or
+    /// written).
     pub fn bytes(&self) -> u64 {
-        self.len.load(Ordering::Relaxed)
+        let ros2 = self
+            .ros2
+            .as_ref()
+            .map_or(0, |r| r.len.load(Ordering::Relaxed));
+        self.len.load(Ordering::Relaxed) + ros2
+    }
+
+    /// The ROS 2 file beside this one, if any.
+    pub fn ros2_path(&self) -> Option<&Path> {
+        self.ros2.as_ref().map(|r| r.path.as_path())
+    }
+
+    /// Writes a ROS 2 message (CDR) into the ROS 2 file; nothing without one.
+    pub fn write_ros2(
+        &mut self,
+        channel: &RosChannel,
+        log_ns: u64,
+        publish_ns: u64,
+        cdr: &[u8],
+    ) -> Result<()> {
+        let Some(ros) = self.ros2.as_mut() else {
+            return Ok(());
+        };
+        let path = &ros.path;
+        let (channel_id, sequence) = match ros.channels.get_mut(&channel.topic) {
+            Some((id, sequence)) => {
+                *sequence = sequence.wrapping_add(1);
+                (*id, *sequence)
+            }
+            None => {
+                let schema = ros
+                    .writer
+                    .add_schema(
+                        channel.type_name,
+                        ROS2_SCHEMA_ENCODING,
+                        channel.definition().as_bytes(),
+                    )
+                    .with_context(|| format!("cannot write to {}", path.display()))?;
+                let id = ros
+                    .writer
+                    .add_channel(
+                        schema,
+                        &channel.topic,
+                        ROS2_MESSAGE_ENCODING,
+                        &BTreeMap::new(),
+                    )
+                    .with_context(|| format!("cannot write to {}", path.display()))?;
+                ros.channels.insert(channel.topic.clone(), (id, 0));
+                (id, 0)
+            }
+        };
+        put(
+            &mut ros.writer,
+            path,
+            (channel_id, sequence),
+            (log_ns, publish_ns),
+            cdr,
+        )
     }
 
     pub fn messages(&self) -> u64 {
@@ -108,34 +231,45 @@ impl McapFile {
 
     pub fn write(&mut self, message: &StoredMessage<'_>) -> Result<()> {
         let (channel_id, sequence) = self.channel(message.key, message.topic)?;
-        self.writer
-            .write_to_known_channel(
-                &mcap::records::MessageHeader {
-                    channel_id,
-                    sequence,
-                    log_time: message.log_ns,
-                    publish_time: message.publish_ns,
-                },
-                message.payload,
-            )
-            .with_context(|| format!("cannot write to {}", self.path.display()))?;
+        put(
+            &mut self.writer,
+            &self.path,
+            (channel_id, sequence),
+            (message.log_ns, message.publish_ns),
+            message.payload,
+        )?;
         self.messages += 1;
         Ok(())
     }
 
     /// Closes the open chunk and flushes it to the file.
     pub fn close_chunk(&mut self) -> Result<()> {
+        if let Some(ros) = self.ros2.as_mut() {
+            ros.writer
+                .flush()
+                .with_context(|| format!("cannot write to {}", ros.path.display()))?;
+        }
         self.writer
             .flush()
             .with_context(|| format!("cannot write to {}", self.path.display()))
     }
 
-    /// Writes the summary and footer: the file is complete.
+    /// Writes the summary and footer (of both files with `--ros2`): the file
+    /// is complete. Its bytes (with the ROS 2 file's).
     pub fn finish(mut self) -> Result<u64> {
+        let ros = match self.ros2.as_mut() {
+            Some(ros) => ros
+                .writer
+                .finish()
+                .map(drop)
+                .with_context(|| format!("cannot finish {}", ros.path.display())),
+            None => Ok(()),
+        };
         self.writer
             .finish()
             .with_context(|| format!("cannot finish {}", self.path.display()))?;
-        Ok(self.len.load(Ordering::Relaxed))
+        ros?;
+        Ok(self.bytes())
     }
 
     /// The channel of shroud's `topic` and its next sequence number.
@@ -181,17 +315,13 @@ impl McapFile {
                 self.add_channel(schema_id, &view.topic, &encoding, &BTreeMap::new())?
             }
         };
-        self.writer
-            .write_to_known_channel(
-                &mcap::records::MessageHeader {
-                    channel_id,
-                    sequence,
-                    log_time: log_ns,
-                    publish_time: publish_ns,
-                },
-                &view.data,
-            )
-            .with_context(|| format!("cannot write to {}", self.path.display()))?;
+        put(
+            &mut self.writer,
+            &self.path,
+            (channel_id, sequence),
+            (log_ns, publish_ns),
+            &view.data,
+        )?;
         self.messages += 1;
         Ok(())
     }

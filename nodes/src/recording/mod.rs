@@ -1,7 +1,9 @@
 //! MCAP recordings: `shroud record` writes the namespace's messages into an
 //! MCAP file (exactly as they travelled), `shroud replay` publishes them
 //! again with their timing, `shroud mcap info` says what a file holds, even
-//! a truncated one. The decisions (topic filters, layout, chunks, splits,
+//! a truncated one. With `--ros2`, `shroud record` also writes a ROS 2 file
+//! (`ros2_out.rs`), and `shroud replay` replays rosbag2 recordings
+//! (`ros2_in.rs`). The decisions (topic filters, layout, chunks, splits,
 //! drops, replay timing) are `shroud_record`'s; this is the I/O.
 
 mod disk;
@@ -10,6 +12,8 @@ mod mcap_file;
 mod reader;
 mod record;
 mod replay;
+mod ros2_in;
+mod ros2_out;
 mod shared;
 mod views;
 mod writer;

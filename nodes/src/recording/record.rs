@@ -16,6 +16,7 @@ use clap::{Args, ValueEnum};
 use shroud_graph::metrics::names as metric;
 use shroud_msg::TopicKey;
 use shroud_record::layout::recording_metadata;
+use shroud_record::ros2::ros2_path;
 use shroud_record::{
     split_path, ByteQueue, ChunkPolicy, DiskReserve, DropCause, SplitPolicy, TopicFilter,
 };
@@ -75,6 +76,14 @@ pub struct RecordArgs {
     /// `no-verdict`.
     #[arg(long, default_value_t = 0.5)]
     pub verdict_timeout: f64,
+    /// Also write a ROS 2 recording beside each file, `<stem>.ros2.mcap`
+    /// (read by `ros2 bag play` and rosbags): clouds as
+    /// `sensor_msgs/msg/PointCloud2` on `/shroud/cloud/<stream>`, joint
+    /// states as `sensor_msgs/msg/JointState` on `/shroud/joints/<arm>`,
+    /// verdicts as `diagnostic_msgs/msg/DiagnosticStatus` on
+    /// `/shroud/verdict/<arm>`.
+    #[arg(long)]
+    pub ros2: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -105,8 +114,11 @@ pub fn run(args: RecordArgs) -> Result<()> {
     let plan = plan(&args)?;
     for index in 0..2 {
         let path = split_path(&plan.writer.base, plan.writer.split.splits(), index);
-        if path.exists() && !args.overwrite {
-            bail!("{} exists (give --overwrite to replace it)", path.display());
+        let ros = args.ros2.then(|| ros2_path(&path));
+        for path in std::iter::once(path).chain(ros) {
+            if path.exists() && !args.overwrite {
+                bail!("{} exists (give --overwrite to replace it)", path.display());
+            }
         }
     }
     let first_path = split_path(&plan.writer.base, plan.writer.split.splits(), 0);
@@ -162,6 +174,7 @@ fn plan(args: &RecordArgs) -> Result<Plan> {
                 compression,
                 metadata: recording_metadata(namespace, &args.topics, env!("CARGO_PKG_VERSION")),
                 overwrite: args.overwrite,
+                ros2: args.ros2,
             },
             views,
         },
@@ -282,6 +295,9 @@ fn print_summary(files: &[WrittenFile], recording: &Recording, elapsed: Duration
             f.messages,
             f.bytes as f64 / 1e6
         );
+        if let Some(ros2) = &f.ros2 {
+            println!("    and its ROS 2 recording {}", ros2.display());
+        }
     }
     let drops = recording.drops();
     let by_cause: Vec<String> = DropCause::ALL

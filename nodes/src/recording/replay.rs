@@ -4,8 +4,12 @@
 //! topic kind and name, by log time (`shroud-record`'s [`ReplaySchedule`]), pass after
 //! pass with `--loop`. The file is streamed, one chunk in memory at a time; a
 //! truncated file is replayed up to its last complete chunk, with a warning.
+//! With `--ros2-topic`, FILE is a ROS 2 recording (rosbag2) whose mapped
+//! topics are converted and replayed the same way (`ros2_in.rs`).
 
 use super::reader::{read_records, Ending};
+use super::ros2_in::{bag_inputs, PublishFn, RosBag, RosPass};
+use crate::args::RosCloudArgs;
 use crate::runtime::{run_node, NodeCommon, NodeContext};
 use crate::transport::{unix_ns, PayloadWriter};
 use anyhow::Result;
@@ -14,6 +18,7 @@ use mcap::records::Record;
 use shroud_graph::metrics::names as metric;
 use shroud_msg::{CloudMessage, JointStateMessage, TopicKey, TopicKind};
 use shroud_record::layout::{replayable, ChannelDescription};
+use shroud_record::ros2::{RosTopicMap, ROS2_MESSAGE_ENCODING};
 use shroud_record::{Pace, ReplaySchedule, TopicFilter};
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -25,7 +30,9 @@ use zenoh::Wait;
 pub struct ReplayArgs {
     #[command(flatten)]
     pub common: NodeCommon,
-    /// The MCAP recording (`shroud record`).
+    /// The MCAP recording (`shroud record`); with --ros2-topic, a ROS 2
+    /// recording: a rosbag2 directory (its metadata.yaml lists its .mcap
+    /// files) or one .mcap file.
     pub file: PathBuf,
     /// Times real time (0.001 to 1000).
     #[arg(long, default_value_t = 1.0)]
@@ -38,8 +45,21 @@ pub struct ReplayArgs {
     pub looping: bool,
     /// Topics to replay: comma-separated <kind>/<name> patterns (default:
     /// every kind but status, which the replayed graph's own nodes publish).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "ros2_topics")]
     pub topics: Option<String>,
+    /// A topic of a ROS 2 recording and the stream it replays to,
+    /// `TOPIC=cloud/NAME` (`sensor_msgs/msg/PointCloud2`) or
+    /// `TOPIC=joints/ARM` (`sensor_msgs/msg/JointState`), e.g.
+    /// `/points=cloud/camera`. Repeatable; other topics are skipped.
+    #[arg(long = "ros2-topic", value_name = "TOPIC=KIND/NAME")]
+    pub ros2_topics: Vec<String>,
+    /// The arm file of a `joints/ARM` stream of --ros2-topic (its joint
+    /// names): the one whose arm is named ARM, or the only one. Repeatable.
+    #[arg(long = "arm-file", value_name = "FILE", requires = "ros2_topics")]
+    pub arm_files: Vec<PathBuf>,
+    /// Where the clouds of --ros2-topic were taken from.
+    #[command(flatten)]
+    pub placement: RosCloudArgs,
     /// Wait up to this many seconds for a subscriber on each replayed topic
     /// before its first message (0: publish at once).
     #[arg(long, value_name = "S", default_value_t = 0.0)]
@@ -56,9 +76,23 @@ struct Plan {
     file: PathBuf,
     pace: Pace,
     looping: bool,
-    filter: TopicFilter,
+    source: Source,
     wait_subscribers: Duration,
     restamp: bool,
+}
+
+/// What the recording is and which of its messages are replayed.
+enum Source {
+    /// Shroud's own recording, its topics picked by `--topics`.
+    Shroud(TopicFilter),
+    /// A ROS 2 recording's files, in order.
+    Ros2(Vec<PathBuf>, Box<RosBag>),
+}
+
+/// The channels and schemas of one pass over a file.
+enum PassState {
+    Shroud(Pass),
+    Ros2(RosPass),
 }
 
 /// Publishing shared memory segment: a few large clouds.
@@ -68,9 +102,14 @@ const STOP_POLL: Duration = Duration::from_millis(50);
 
 pub fn run(args: ReplayArgs) -> Result<()> {
     let plan = plan(&args)?;
-    // Read the file's start now: a missing or foreign file fails before the
-    // node starts.
-    read_records(&plan.file, |_| Ok(false))?;
+    // Read the file's start now: a missing or foreign file (or a mapped ROS
+    // topic of another type) fails before the node starts.
+    match &plan.source {
+        Source::Shroud(_) => {
+            read_records(&plan.file, |_| Ok(false))?;
+        }
+        Source::Ros2(files, bag) => bag.check_start(files)?,
+    }
     let common = args.common.clone();
     run_node(&common, "replay", move |ctx| replay(ctx, plan))
 }
@@ -80,9 +119,14 @@ fn plan(args: &ReplayArgs) -> Result<Plan> {
         true => Pace::Max,
         false => Pace::speed(args.speed)?,
     };
-    let filter = match &args.topics {
-        Some(text) => TopicFilter::parse(text)?,
-        None => TopicFilter::all().without(TopicKind::Status),
+    let source = match (&args.topics, args.ros2_topics.is_empty()) {
+        (_, false) => {
+            let map = RosTopicMap::parse(&args.ros2_topics)?;
+            let bag = RosBag::new(map, args.placement.mount()?, &args.arm_files)?;
+            Source::Ros2(bag_inputs(&args.file)?, Box::new(bag))
+        }
+        (Some(text), true) => Source::Shroud(TopicFilter::parse(text)?),
+        (None, true) => Source::Shroud(TopicFilter::all().without(TopicKind::Status)),
     };
     anyhow::ensure!(
         args.wait_subscribers.is_finite() && (0.0..=3600.0).contains(&args.wait_subscribers),
@@ -92,13 +136,13 @@ fn plan(args: &ReplayArgs) -> Result<Plan> {
         file: args.file.clone(),
         pace,
         looping: args.looping,
-        filter,
+        source,
         wait_subscribers: Duration::from_secs_f64(args.wait_subscribers),
         restamp: args.restamp,
     })
 }
 
-fn replay(ctx: Arc<NodeContext>, plan: Plan) -> Result<()> {
+fn replay(ctx: Arc<NodeContext>, mut plan: Plan) -> Result<()> {
     let started = Instant::now();
     // Moves on by the time spent waiting for subscribers, so that messages
     // keep their spacing after a wait rather than going out in a burst.
@@ -106,38 +150,71 @@ fn replay(ctx: Arc<NodeContext>, plan: Plan) -> Result<()> {
     let mut schedule = ReplaySchedule::new(plan.pace);
     let mut out = Publishers::new(&ctx, started + plan.wait_subscribers);
     let mut warned = false;
+    let files = match &plan.source {
+        Source::Shroud(_) => vec![plan.file.clone()],
+        Source::Ros2(files, _) => files.clone(),
+    };
     for pass in 0u64.. {
         ctx.metrics.set(metric::PASS, pass as f64);
-        let mut pass_state = Pass::default();
         let mut published = 0u64;
-        let ending = read_records(&plan.file, |record| {
-            pass_state.take(
-                record,
-                &plan.filter,
-                &mut |key: &TopicKey, log_ns: u64, data: &[u8]| {
-                    let due = origin + Duration::from_nanos(schedule.due_ns(log_ns));
-                    if !sleep_until(&ctx, due) {
-                        return Ok(false);
-                    }
-                    let restamped = plan.restamp.then(|| restamp(key, data)).flatten();
-                    origin += out.publish(key, restamped.as_deref().unwrap_or(data))?;
-                    published += 1;
-                    Ok(true)
-                },
-            )
-        })?;
-        if published == 0 && !ctx.stopping() {
-            anyhow::bail!(
-                "nothing to replay: no message of {} is on a shroud channel that --topics takes",
-                plan.file.display()
-            );
+        let mut state = match plan.source {
+            Source::Shroud(_) => PassState::Shroud(Pass::default()),
+            Source::Ros2(..) => PassState::Ros2(RosPass::default()),
+        };
+        for file in &files {
+            state = match state {
+                PassState::Shroud(p) => PassState::Shroud(Pass {
+                    cdr_channels: p.cdr_channels,
+                    ..Pass::default()
+                }),
+                PassState::Ros2(p) => PassState::Ros2(p.next_file()),
+            };
+            let mut publish = |key: &TopicKey, log_ns: u64, data: &[u8]| {
+                let due = origin + Duration::from_nanos(schedule.due_ns(log_ns));
+                if !sleep_until(&ctx, due) {
+                    return Ok(false);
+                }
+                let restamped = plan.restamp.then(|| restamp(key, data)).flatten();
+                origin += out.publish(key, restamped.as_deref().unwrap_or(data))?;
+                published += 1;
+                Ok(true)
+            };
+            let ending = read_records(file, |record| match (&mut state, &mut plan.source) {
+                (PassState::Shroud(p), Source::Shroud(filter)) => {
+                    p.take(record, filter, &mut publish)
+                }
+                (PassState::Ros2(p), Source::Ros2(_, bag)) => {
+                    p.take(bag, &ctx, record, &mut publish)
+                }
+                _ => unreachable!("a pass is of its source's kind"),
+            })?;
+            if let (Ending::Truncated { reason, .. }, false) = (&ending, warned) {
+                tracing::warn!(
+                    "{} is truncated ({reason}): replayed up to its last complete chunk",
+                    file.display()
+                );
+                warned = true;
+            }
+            if ctx.stopping() {
+                break;
+            }
         }
-        if let (Ending::Truncated { reason, .. }, false) = (&ending, warned) {
-            tracing::warn!(
-                "{} is truncated ({reason}): replayed up to its last complete chunk",
+        if let (0, PassState::Ros2(p), Source::Ros2(_, bag)) = (pass, &state, &plan.source) {
+            for topic in bag.missing(p) {
+                tracing::warn!("{} has no channel {topic}", plan.file.display());
+            }
+        }
+        if published == 0 && !ctx.stopping() {
+            let hint = match &state {
+                PassState::Shroud(p) if p.cdr_channels => {
+                    " (it holds ROS 2 CDR channels: map them with --ros2-topic)"
+                }
+                _ => "",
+            };
+            anyhow::bail!(
+                "nothing to replay: no message of {} is on a channel that --topics or --ros2-topic takes{hint}",
                 plan.file.display()
             );
-            warned = true;
         }
         if !plan.looping || ctx.stopping() {
             break;
@@ -180,15 +257,14 @@ fn sleep_until(ctx: &NodeContext, due: Instant) -> bool {
     }
 }
 
-/// Publishes one replayed message (key, log time, payload); false to stop.
-type PublishFn<'a> = dyn FnMut(&TopicKey, u64, &[u8]) -> Result<bool> + 'a;
-
 /// The channels and schemas of one pass over the file.
 #[derive(Default)]
 struct Pass {
     schemas: HashMap<u16, (String, String, Vec<u8>)>,
     /// By channel id: the key to publish to, `None` when not replayed.
     channels: HashMap<u16, Option<TopicKey>>,
+    /// Whether a ROS 2 channel was met (the file may be a rosbag2 one).
+    cdr_channels: bool,
 }
 
 impl Pass {
@@ -218,6 +294,7 @@ impl Pass {
                     schema_encoding: encoding,
                     schema_data: data,
                 })?;
+                self.cdr_channels |= c.message_encoding == ROS2_MESSAGE_ENCODING;
                 self.channels
                     .insert(c.id, key.filter(|k| filter.matches(k)));
             }

@@ -58,6 +58,14 @@ impl Recording {
         tracing::warn!("no Foxglove view: {reason}");
     }
 
+    /// A recorded message whose ROS 2 message could not be made (`--ros2`;
+    /// counted with the views that failed; the raw message is recorded all
+    /// the same).
+    pub fn ros2_failed(&self, reason: &str) {
+        self.metrics.add(metric::VIEWS_FAILED, 1);
+        tracing::warn!("no ROS 2 message: {reason}");
+    }
+
     pub fn dropped(&self, topic: &str, cause: DropCause) {
         lock(&self.drops).add(topic, cause);
         self.metrics.add(Counter::of(cause.counter()), 1);

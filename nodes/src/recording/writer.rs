@@ -8,6 +8,7 @@
 
 use super::disk::free_bytes;
 use super::mcap_file::{FileOptions, McapFile, StoredMessage};
+use super::ros2_out::ros2_message;
 use super::shared::Recording;
 use super::views::FoxgloveViews;
 use crate::transport::{unix_ns, WaitQueue};
@@ -43,6 +44,9 @@ pub struct WriterPlan {
 #[derive(Debug, Clone)]
 pub struct WrittenFile {
     pub path: PathBuf,
+    /// Its ROS 2 file (`--ros2`).
+    pub ros2: Option<PathBuf>,
+    /// Bytes of both files.
     pub bytes: u64,
     pub messages: u64,
 }
@@ -144,9 +148,30 @@ impl Writer {
         })?;
         let message = Some((&arrival.key, payload));
         let views = self.write_views(message, arrival.log_ns, arrival.publish_ns)?;
+        let ros2 = self.write_ros2(arrival, payload)?;
         self.recording.written(len);
-        self.add_to_chunk(len + views);
+        self.add_to_chunk(len + views + ros2);
         Ok(())
+    }
+
+    /// Writes the ROS 2 message of a message just written (`--ros2`),
+    /// returning its bytes; one that does not convert is counted and logged
+    /// (its raw record stays).
+    fn write_ros2(&mut self, arrival: &Arrival, payload: &[u8]) -> Result<u64> {
+        let Some(file) = self.file.as_mut().filter(|f| f.ros2_path().is_some()) else {
+            return Ok(0);
+        };
+        match ros2_message(&arrival.key, payload) {
+            None => Ok(0),
+            Some(Err(e)) => {
+                self.recording.ros2_failed(&e);
+                Ok(0)
+            }
+            Some(Ok((channel, cdr))) => {
+                file.write_ros2(&channel, arrival.log_ns, arrival.publish_ns, &cdr)?;
+                Ok(cdr.len() as u64)
+            }
+        }
     }
 
     /// Bytes just written into the open chunk (which starts its age with
@@ -273,9 +298,11 @@ impl Writer {
             return;
         };
         let (path, messages) = (file.path().to_path_buf(), file.messages());
+        let ros2 = file.ros2_path().map(std::path::Path::to_path_buf);
         match file.finish() {
             Ok(bytes) => self.written.push(WrittenFile {
                 path,
+                ros2,
                 bytes,
                 messages,
             }),

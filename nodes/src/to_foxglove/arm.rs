@@ -13,21 +13,11 @@ use foxglove::messages::{
 };
 use glam::{DQuat, DVec3};
 use shroud_guard::{ShownVerdict, VerdictWatch};
-use shroud_msg::{CollisionMessage, GuardVerdict};
-use shroud_viewers::scene::{ArmSpeed, ClearanceBand, PosedArm, SpeedState};
+use shroud_msg::GuardVerdict;
+use shroud_viewers::scene::{
+    link_bands, ArmSpeed, ClearanceBand, PosedArm, SpeedState, NO_VERDICT_RGBA,
+};
 use std::collections::BTreeMap;
-
-/// Linear RGBA of a link no verdict speaks for (no guard yet, or a link the
-/// guard does not report): neutral grey.
-pub const NO_VERDICT_RGBA: [f64; 4] = [0.6, 0.6, 0.6, 0.6];
-
-/// Each link's band in the guard's verdict `msg`.
-pub fn link_bands(msg: &CollisionMessage) -> BTreeMap<String, ClearanceBand> {
-    msg.links
-        .iter()
-        .map(|l| (l.link.clone(), ClearanceBand::of(l, msg.stop_distance)))
-        .collect()
-}
 
 /// The bands of the verdict `watch` vouches for at `now_ns`; none after a
 /// silence or before the first verdict (grey: nothing is known).

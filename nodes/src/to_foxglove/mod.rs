@@ -13,9 +13,7 @@ mod schema;
 mod surrogate;
 mod topics;
 
-pub use arm::{
-    arm_scene, arm_transforms, link_bands, vouched_bands, vouched_speed, NO_VERDICT_RGBA,
-};
+pub use arm::{arm_scene, arm_transforms, vouched_bands, vouched_speed};
 pub use cloud::point_cloud;
 pub use geometry::{timestamp, WORLD_FRAME};
 pub use json::{
@@ -23,7 +21,7 @@ pub use json::{
     SurfaceCertificate, VerdictView, VERDICT_PERIOD_NS,
 };
 pub use schema::schema_of;
-pub use surrogate::{surface_rgba, surrogate_scene, SURFACE_PER_CELL};
+pub use surrogate::{surrogate_scene, SURFACE_PER_CELL};
 pub use topics::{
     arm_scene_topic, arm_transforms_topic, certificate_topic, cloud_topic, status_topic,
     surrogate_topic, verdict_topic, BLEND_TOPIC,

@@ -10,16 +10,7 @@ use foxglove::messages::{
 };
 use shroud_msg::SurrogateMessage;
 use shroud_surrogate::{Side, Surrogate};
-use shroud_viewers::scene::{surrogate_meshes, SurfaceMesh};
-
-/// Linear RGBA of each side: the upper surface blue, the lower amber, both
-/// translucent so that the cloud between them shows.
-pub fn surface_rgba(side: Side) -> [f64; 4] {
-    match side {
-        Side::Upper => [0.25, 0.55, 0.95, 0.45],
-        Side::Lower => [0.95, 0.60, 0.20, 0.45],
-    }
-}
+use shroud_viewers::scene::{surface_rgba, surrogate_meshes, SurfaceMesh};
 
 fn entity_id(stream: &str, side: Side) -> String {
     format!("surrogate/{stream}/{}", side.name())

@@ -20,6 +20,7 @@ pub enum NodeKind {
     DeviceSim,
     Dashboard,
     Foxglove,
+    Ros2,
     Record,
     Replay,
 }
@@ -142,6 +143,13 @@ const BLEND: &[Port] = &[
 ];
 const SMOOTH: &[Port] = &[port(Cloud, Input, "input"), port(Smooth, Output, "output")];
 const VIEWER: &[Port] = &[optional(port(Blend, Output, "blend-stream"))];
+const ROS2: &[Port] = &[
+    optional(port(Cloud, Output, "cloud")),
+    optional(port(Joints, Output, "arm")),
+    optional(port(Collision, Input, "arm")),
+    optional(many(port(Surrogate, Input, "surrogate"))),
+    optional(many(port(Cloud, Input, "publish-cloud"))),
+];
 const REPLAY: &[Port] = &[
     replayed(Cloud),
     replayed(Surrogate),
@@ -152,7 +160,7 @@ const REPLAY: &[Port] = &[
 ];
 
 impl NodeKind {
-    pub const ALL: [NodeKind; 13] = [
+    pub const ALL: [NodeKind; 14] = [
         Self::Scanner,
         Self::Fit,
         Self::Guard,
@@ -164,6 +172,7 @@ impl NodeKind {
         Self::DeviceSim,
         Self::Dashboard,
         Self::Foxglove,
+        Self::Ros2,
         Self::Record,
         Self::Replay,
     ];
@@ -181,6 +190,7 @@ impl NodeKind {
             Self::DeviceSim => "device-sim",
             Self::Dashboard => "dashboard",
             Self::Foxglove => "foxglove",
+            Self::Ros2 => "ros2",
             Self::Record => "record",
             Self::Replay => "replay",
         }
@@ -201,6 +211,7 @@ impl NodeKind {
             // An emulator talks to its driver over a pseudo-terminal, not zenoh.
             Self::DeviceSim => &[],
             Self::Dashboard | Self::Foxglove => VIEWER,
+            Self::Ros2 => ROS2,
             Self::Record => &[],
             Self::Replay => REPLAY,
         }

@@ -58,28 +58,28 @@ pub const RECEIVED: Counter = counter(
 pub const PUBLISHED: Counter = counter(
     "published",
     &[
-        Scanner, Fit, Guard, Arm, Serial, Can, Blend, Smooth, Replay, Dashboard, Foxglove,
+        Scanner, Fit, Guard, Arm, Serial, Can, Blend, Smooth, Replay, Dashboard, Foxglove, Ros2,
     ],
     "messages handed to zenoh (a verdict, once its put returned)",
 );
 pub const PUBLISH_ERRORS: Counter = counter(
     "publish_errors",
     &[
-        Scanner, Fit, Guard, Arm, Serial, Can, Blend, Smooth, Replay, Dashboard, Foxglove,
+        Scanner, Fit, Guard, Arm, Serial, Can, Blend, Smooth, Replay, Dashboard, Foxglove, Ros2,
     ],
     "messages that could not be encoded or that zenoh refused to publish (logged)",
 );
 pub const DROPPED_MALFORMED: Counter = counter(
     "dropped_malformed",
     &[
-        Fit, Guard, Arm, Serial, Can, Blend, Smooth, Dashboard, Foxglove,
+        Fit, Guard, Arm, Serial, Can, Blend, Smooth, Dashboard, Foxglove, Ros2,
     ],
     "messages that could not be decoded or used (logged with their key); for serial and can nodes, the driver's errors plus the transport's (a serial mount's undecodable joint states included)",
 );
 pub const DROPPED_BACKLOG: Counter = counter(
     "dropped_backlog",
-    &[Fit, Smooth, Blend, Serial],
-    "messages dropped because the node's queue was full (the fit, smooth and blend nodes keep the newest; a serial node's assembler drops the new scan or joint state)",
+    &[Fit, Smooth, Blend, Serial, Ros2],
+    "messages dropped because the node's queue was full (the fit, smooth and blend nodes keep the newest; a serial node's assembler and a ros2 node's cloud input drop the new one)",
 );
 pub const SEQUENCE_GAPS: Counter = counter(
     "sequence_gaps",
@@ -121,9 +121,34 @@ pub const SECTOR_ERRORS: Counter = counter(
     &[Fit],
     "sectors not fitted: no room in the field of view, or the fitter refused its points (logged once per sector)",
 );
+pub const ROS2_RECEIVED: Counter = counter(
+    "ros2_received",
+    &[Ros2],
+    "ROS 2 samples received (clouds and joint states), before any check",
+);
+pub const ROS2_BAD_ATTACHMENT: Counter = counter(
+    "ros2_bad_attachment",
+    &[Ros2],
+    "ROS 2 samples without rmw_zenoh's 33-byte attachment, or with another (dropped, logged)",
+);
+pub const ROS2_EMPTY_RAYS: Counter = counter(
+    "ros2_empty_rays",
+    &[Ros2],
+    "points of ROS 2 clouds without a return (not finite): those in groups holding a 2 x 2 block are stated as unseen cones",
+);
+pub const ROS2_UNKNOWN_JOINTS: Counter = counter(
+    "ros2_unknown_joints",
+    &[Ros2],
+    "joint values of ROS 2 joint states whose names the arm has not (dropped; each name logged once)",
+);
+pub const ROS2_SENT: Counter = counter(
+    "ros2_sent",
+    &[Ros2],
+    "ROS 2 messages sent (verdicts, speed scales, markers, clouds, transforms)",
+);
 pub const POINTS: Gauge = gauge(
     "points",
-    &[Scanner, Fit, Blend],
+    &[Scanner, Fit, Blend, Ros2],
     "points of the latest cloud",
 );
 pub const TRANSIT_MS: Gauge = gauge(
@@ -365,7 +390,7 @@ pub const BROWSERS_CONNECTED: Counter = counter(
 pub const BROWSERS: Gauge = gauge("browsers", &[Dashboard], "browsers connected now");
 pub const PACED_SUPERSEDED: Counter = counter(
     "paced_superseded",
-    &[Dashboard, Foxglove],
+    &[Dashboard, Foxglove, Ros2],
     "paced samples replaced by a newer one before they were sent",
 );
 pub const SAMPLES_SUPERSEDED: Counter = counter(
@@ -442,6 +467,11 @@ pub const COUNTERS: &[Counter] = &[
     SECTORS_PUBLISHED,
     SECTORS_UNSTATED,
     SECTOR_ERRORS,
+    ROS2_RECEIVED,
+    ROS2_BAD_ATTACHMENT,
+    ROS2_EMPTY_RAYS,
+    ROS2_UNKNOWN_JOINTS,
+    ROS2_SENT,
     SURROGATES,
     STOPS,
     HALTS,

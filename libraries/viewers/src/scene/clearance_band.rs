@@ -1,6 +1,19 @@
 //! How close a link is, in four bands that every viewer colours the same way.
 
-use shroud_msg::LinkClearance;
+use shroud_msg::{CollisionMessage, LinkClearance};
+use std::collections::BTreeMap;
+
+/// Linear RGBA of a link no verdict speaks for (no guard yet, or a link the
+/// guard does not report): neutral grey.
+pub const NO_VERDICT_RGBA: [f64; 4] = [0.6, 0.6, 0.6, 0.6];
+
+/// Each link's band in the guard's verdict `msg`.
+pub fn link_bands(msg: &CollisionMessage) -> BTreeMap<String, ClearanceBand> {
+    msg.links
+        .iter()
+        .map(|l| (l.link.clone(), ClearanceBand::of(l, msg.stop_distance)))
+        .collect()
+}
 
 /// A link's clearance band against the guard's stop distance.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

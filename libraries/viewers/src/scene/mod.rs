@@ -15,8 +15,8 @@ mod surface_mesh;
 
 pub use arm_pose::{pose_arm, PosedArm, PosedLink};
 pub use arm_speed::{ArmSpeed, SpeedState};
-pub use clearance_band::ClearanceBand;
+pub use clearance_band::{link_bands, ClearanceBand, NO_VERDICT_RGBA};
 pub use decimate::Decimation;
 pub use error::SceneError;
 pub use smooth_mesh::smooth_mesh;
-pub use surface_mesh::{surrogate_meshes, SurfaceMesh};
+pub use surface_mesh::{surface_rgba, surrogate_meshes, SurfaceMesh};

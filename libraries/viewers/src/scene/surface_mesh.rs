@@ -16,6 +16,15 @@ pub struct SurfaceMesh {
     pub certificate: Certificate,
 }
 
+/// Linear RGBA of each side: the upper surface blue, the lower amber, both
+/// translucent so that the cloud between them shows.
+pub fn surface_rgba(side: Side) -> [f64; 4] {
+    match side {
+        Side::Upper => [0.25, 0.55, 0.95, 0.45],
+        Side::Lower => [0.95, 0.60, 0.20, 0.45],
+    }
+}
+
 /// Every surface of `surrogate` (upper first), each kept trim triangle split
 /// into `per_cell * per_cell` triangles.
 pub fn surrogate_meshes(surrogate: &Surrogate, per_cell: usize) -> Vec<SurfaceMesh> {

@@ -1,0 +1,90 @@
+//! visualization_msgs (common_interfaces, Jazzy): UVCoordinate.msg,
+//! MeshFile.msg, Marker.msg and MarkerArray.msg. Every Marker field is on the
+//! wire even when unused (texture, uv_coordinates, mesh_file, ...).
+
+use super::builtin_interfaces::Duration;
+use super::geometry_msgs::{Point, Pose, Vector3};
+use super::sensor_msgs::CompressedImage;
+use super::std_msgs::{ColorRGBA, Header};
+
+ros_message! {
+    /// A texture coordinate of a TRIANGLE_LIST vertex (visualization_msgs/msg/UVCoordinate).
+    "visualization_msgs/msg/UVCoordinate",
+    "RIHS01_f27f7ed21fe360c6066944f856b801a0c0d1e94e815b6886444b42d90b196a26";
+    pub struct UVCoordinate {
+        pub u: f32,
+        pub v: f32,
+    }
+}
+
+ros_message! {
+    /// A mesh file sent inline (visualization_msgs/msg/MeshFile).
+    "visualization_msgs/msg/MeshFile",
+    "RIHS01_7710ece15a148fb7c9b546364cfb215bb06098087bd6394fe5b73a493508f8c4";
+    pub struct MeshFile {
+        pub filename: String,
+        pub data: Vec<u8>,
+    }
+}
+
+ros_message! {
+    /// One shape for RViz and Foxglove (visualization_msgs/msg/Marker).
+    "visualization_msgs/msg/Marker",
+    "RIHS01_45b13ccf791f225962bf74e746f9644518855d783a6f42ba0cc14fde2b4f3ce0";
+    pub struct Marker {
+        pub header: Header,
+        /// With `id`, names the marker for later MODIFY or DELETE.
+        pub ns: String,
+        pub id: i32,
+        /// The .msg's `type`: one of the shape constants.
+        pub type_: i32,
+        /// ADD (= MODIFY), DELETE or DELETEALL.
+        pub action: i32,
+        pub pose: Pose,
+        pub scale: Vector3,
+        pub color: ColorRGBA,
+        /// Zero: until replaced or deleted.
+        pub lifetime: Duration,
+        pub frame_locked: bool,
+        pub points: Vec<Point>,
+        /// Per point (or per vertex) colors; empty means `color`.
+        pub colors: Vec<ColorRGBA>,
+        pub texture_resource: String,
+        pub texture: CompressedImage,
+        pub uv_coordinates: Vec<UVCoordinate>,
+        pub text: String,
+        pub mesh_resource: String,
+        pub mesh_file: MeshFile,
+        pub mesh_use_embedded_materials: bool,
+    }
+}
+
+impl Marker {
+    pub const ARROW: i32 = 0;
+    pub const CUBE: i32 = 1;
+    pub const SPHERE: i32 = 2;
+    pub const CYLINDER: i32 = 3;
+    pub const LINE_STRIP: i32 = 4;
+    pub const LINE_LIST: i32 = 5;
+    pub const CUBE_LIST: i32 = 6;
+    pub const SPHERE_LIST: i32 = 7;
+    pub const POINTS: i32 = 8;
+    pub const TEXT_VIEW_FACING: i32 = 9;
+    pub const MESH_RESOURCE: i32 = 10;
+    pub const TRIANGLE_LIST: i32 = 11;
+    pub const ARROW_STRIP: i32 = 12;
+
+    pub const ADD: i32 = 0;
+    pub const MODIFY: i32 = 0;
+    pub const DELETE: i32 = 2;
+    pub const DELETEALL: i32 = 3;
+}
+
+ros_message! {
+    /// Markers published together (visualization_msgs/msg/MarkerArray).
+    "visualization_msgs/msg/MarkerArray",
+    "RIHS01_86cb8800b6fb05b5eff1abd7a56f62a5641d3ae9a1c29e78e67e704f1d067dcf";
+    pub struct MarkerArray {
+        pub markers: Vec<Marker>,
+    }
+}
