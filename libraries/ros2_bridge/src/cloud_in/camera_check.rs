@@ -7,7 +7,6 @@
 use super::layout::PointLayout;
 use super::mount::PinholeCamera;
 use crate::CloudInError;
-use glam::DVec3;
 
 /// The largest angle between a returned point's direction (in the cloud's
 /// frame) and its pixel's model ray; an error when it exceeds the ray
@@ -22,12 +21,7 @@ pub fn model_deviation(
     for row in 0..layout.height {
         for column in 0..layout.width {
             let point = layout.point(data, row, column);
-            let be = layout.big_endian;
-            let p = DVec3::new(
-                layout.x.read(point, be),
-                layout.y.read(point, be),
-                layout.z.read(point, be),
-            );
+            let p = layout.xyz(point);
             if !p.is_finite() || p.length_squared() == 0.0 {
                 continue;
             }

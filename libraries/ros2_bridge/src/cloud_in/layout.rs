@@ -114,6 +114,16 @@ impl PointLayout {
         self.len() == 0
     }
 
+    /// A point's x, y, z (its bytes from [`Self::point`]).
+    pub fn xyz(&self, point: &[u8]) -> glam::DVec3 {
+        let be = self.big_endian;
+        glam::DVec3::new(
+            self.x.read(point, be),
+            self.y.read(point, be),
+            self.z.read(point, be),
+        )
+    }
+
     /// The bytes of point `(row, column)`.
     pub fn point<'d>(&self, data: &'d [u8], row: usize, column: usize) -> &'d [u8] {
         let start = row * self.row_step + column * self.point_step;

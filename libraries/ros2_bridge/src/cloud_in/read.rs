@@ -5,7 +5,6 @@
 
 use super::layout::PointLayout;
 use super::mount::CloudMount;
-use glam::DVec3;
 
 /// The returned points, in the world, and where the rays without one are.
 #[derive(Debug, Default, Clone, PartialEq)]
@@ -32,12 +31,7 @@ pub fn read_points(layout: &PointLayout, data: &[u8], mount: &CloudMount) -> Rea
     for row in 0..layout.height {
         for column in 0..layout.width {
             let point = layout.point(data, row, column);
-            let be = layout.big_endian;
-            let local = DVec3::new(
-                layout.x.read(point, be),
-                layout.y.read(point, be),
-                layout.z.read(point, be),
-            );
+            let local = layout.xyz(point);
             let world = place(local).as_vec3();
             if !world.is_finite() {
                 out.mark_empty(layout, row, column);
@@ -45,7 +39,7 @@ pub fn read_points(layout: &PointLayout, data: &[u8], mount: &CloudMount) -> Rea
             }
             out.points.push(world.to_array());
             if let (Some(field), Some(values)) = (layout.intensity, out.intensity.as_mut()) {
-                let value = field.read(point, be) as f32;
+                let value = field.read(point, layout.big_endian) as f32;
                 out.nonfinite_intensity += usize::from(!value.is_finite());
                 values.push(if value.is_finite() { value } else { 0.0 });
             }
