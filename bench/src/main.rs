@@ -14,6 +14,7 @@ mod guard_separation;
 mod guard_soundness;
 mod latency;
 mod paper000;
+mod ros2_cdr;
 mod soak;
 
 use anyhow::Result;
@@ -53,6 +54,9 @@ pub enum Suite {
     /// came within the stop distance (must be 0) and compares productivity
     /// with a binary stop.
     GuardSeparation,
+    /// shroud-ros2's CDR codec against the `cdr` and `cdr-encoding` crates
+    /// on one PointCloud2 of `--points` points, beside one copy of the payload.
+    Ros2Cdr,
 }
 
 #[derive(Debug, Parser)]
@@ -205,6 +209,7 @@ fn run(args: BenchArgs) -> Result<()> {
         Suite::Soak => soak::run(&args),
         Suite::GuardSoundness => guard_soundness::run_bench(&args),
         Suite::GuardSeparation => guard_separation::run_bench(&args),
+        Suite::Ros2Cdr => ros2_cdr::run(&args),
     }
 }
 

@@ -21,6 +21,8 @@ fn the_help_lists_every_suite() {
         "consumers",
         "soak",
         "guard-soundness",
+        "guard-separation",
+        "ros2-cdr",
     ] {
         assert!(help.contains(suite), "{suite} missing from:\n{help}");
     }

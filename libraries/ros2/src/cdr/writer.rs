@@ -28,9 +28,15 @@ macro_rules! write_primitives {
 impl CdrWriter {
     /// A payload holding the CDR_LE header (`00 01 00 00`).
     pub fn new() -> Self {
-        Self {
-            bytes: little_endian_header().to_vec(),
-        }
+        Self::with_capacity(0)
+    }
+
+    /// The same with room for `capacity` bytes of message, so that a large
+    /// message (a cloud's data) is copied once, not again as the buffer grows.
+    pub fn with_capacity(capacity: usize) -> Self {
+        let mut bytes = Vec::with_capacity(HEADER_LEN + capacity);
+        bytes.extend_from_slice(&little_endian_header());
+        Self { bytes }
     }
 
     write_primitives! { u8: u8, i8: i8, i16: i16, u16: u16, i32: i32, u32: u32, i64: i64, u64: u64, f32: f32, f64: f64 }

@@ -1,7 +1,7 @@
 //! What viewers draw of the graph's messages (the web dashboard, the Foxglove
 //! bridge, recordings): clouds thinned to a point budget, surrogates as their
 //! trimmed triangle meshes, smooth fits tessellated, the arm posed at its joint
-//! state, each link's clearance band, and the arm's speed as its verdict
+//! state (the one a verdict answered), each link's clearance band, and the arm's speed as its verdict
 //! allows (the speed scale and the link that limits it). Pure functions of
 //! decoded messages; every viewer encodes the results in its own format.
 
@@ -10,6 +10,7 @@ mod arm_speed;
 mod clearance_band;
 mod decimate;
 mod error;
+mod recent_joints;
 mod smooth_mesh;
 mod surface_mesh;
 
@@ -18,5 +19,6 @@ pub use arm_speed::{ArmSpeed, SpeedState};
 pub use clearance_band::{link_bands, ClearanceBand, NO_VERDICT_RGBA};
 pub use decimate::Decimation;
 pub use error::SceneError;
+pub use recent_joints::RecentJoints;
 pub use smooth_mesh::smooth_mesh;
 pub use surface_mesh::{surface_rgba, surrogate_meshes, SurfaceMesh};

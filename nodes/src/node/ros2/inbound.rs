@@ -15,6 +15,7 @@ use shroud_msg::{CloudMessage, JointStateMessage};
 use shroud_ros2::rmw::Attachment;
 use shroud_ros2::{JointState, PointCloud2, RosMessage};
 use shroud_ros2_bridge::{cloud_from_ros, CloudMount, JointMatcher};
+use shroud_viewers::scene::RecentJoints;
 use std::collections::BTreeSet;
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender, TrySendError};
 use std::sync::{Arc, Mutex};
@@ -135,8 +136,8 @@ pub struct JointsInput {
     pub topic: RosTopic,
     pub output: Output<JointStateMessage>,
     pub matcher: JointMatcher,
-    /// The latest joint state published, for the arm's markers.
-    pub latest: Arc<Mutex<Option<JointStateMessage>>>,
+    /// The last joint states published, for the arm's markers.
+    pub latest: Arc<Mutex<RecentJoints>>,
 }
 
 /// Subscribes to the joint-state topic; each usable one is published at once.
@@ -178,6 +179,10 @@ pub fn joints_in(
             }
         }
         input.output.put(&matched.message);
-        *input.latest.lock().unwrap_or_else(|p| p.into_inner()) = Some(matched.message);
+        input
+            .latest
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .push(matched.message);
     })
 }

@@ -24,10 +24,15 @@ use shroud_msg::{CollisionMessage, TopicKind};
 use shroud_ros2::QosProfile;
 use shroud_ros2::{DiagnosticStatus, Float64, JointState, MarkerArray, PointCloud2, TFMessage};
 use shroud_ros2_bridge::{CloudMount, JointMatcher};
+use shroud_viewers::scene::RecentJoints;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 use zenoh::qos::Priority;
+
+/// Joint states kept to find the one a verdict answered: a quarter of a
+/// second of a 1 kHz controller, far more than a guard's decision takes.
+const RECENT_JOINTS: usize = 256;
 
 #[derive(Debug, Clone, Args)]
 pub struct Ros2Args {
@@ -101,6 +106,7 @@ fn plan(args: &Ros2Args) -> Result<Plan> {
         "--max-rate must be in (0, 1000] messages a second"
     );
     let mount = args.placement.mount()?;
+    distinct_cloud_topics(&args.publish_cloud)?;
     let arm = match (&args.arm, &args.arm_file) {
         (Some(arm), Some(file)) => Some((arm.clone(), read_arm_file(file)?)),
         (None, None) => None,
@@ -129,6 +135,22 @@ fn out_topic(args: &Ros2Args, name: &str) -> String {
     format!("{}/{name}", args.topic_prefix.trim_end_matches('/'))
 }
 
+/// Two streams sent to ROS must not land on one topic: `ros_token` maps
+/// `cloud/a-b` and `cloud/a_b` alike.
+fn distinct_cloud_topics(streams: &[String]) -> Result<()> {
+    let mut seen = BTreeMap::new();
+    for stream in streams {
+        if let Some(other) = seen.insert(ros_token(stream), stream) {
+            anyhow::ensure!(
+                other == stream,
+                "--publish-cloud {other} and {stream} would both be sent on ROS topic cloud/{}",
+                ros_token(stream)
+            );
+        }
+    }
+    Ok(())
+}
+
 /// A shroud stream name as a ROS name token (letters, digits, `_`).
 fn ros_token(stream: &str) -> String {
     stream
@@ -140,7 +162,7 @@ fn ros_token(stream: &str) -> String {
 fn bridge(ctx: Arc<NodeContext>, args: Ros2Args, plan: Plan) -> Result<()> {
     let ros = RosNode::declare(&ctx.session, plan.identity.clone())?;
     let frame = Arc::new(Mutex::new(None));
-    let latest_joints = Arc::new(Mutex::new(None));
+    let latest_joints = Arc::new(Mutex::new(RecentJoints::new(RECENT_JOINTS)));
     let mut keep = Vec::new();
     let mut workers = Vec::new();
     if let Some(stream) = &args.cloud {
@@ -260,4 +282,26 @@ fn stream_outputs(
         pace_ns: plan.pace_ns,
         tf,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn streams_that_would_share_a_ros_topic_are_refused_by_name() {
+        let streams = ["cloud/a-b".to_string(), "cloud/a_b".to_string()];
+        let error = distinct_cloud_topics(&streams).unwrap_err().to_string();
+        assert!(
+            error.contains("cloud/a-b") && error.contains("cloud/a_b"),
+            "{error}"
+        );
+        assert!(error.contains("cloud/cloud_a_b"), "{error}");
+    }
+
+    #[test]
+    fn distinct_streams_and_a_repeated_one_are_accepted() {
+        let streams = ["cloud/a".into(), "cloud/b".into(), "cloud/a".into()];
+        distinct_cloud_topics(&streams).unwrap();
+    }
 }

@@ -11,13 +11,14 @@ use crate::transport::{monotonic_ns, unix_ns};
 use shroud_graph::metrics::names as metric;
 use shroud_graph::pace::Paced;
 use shroud_guard::ArmModel;
-use shroud_msg::{CloudView, CollisionMessage, JointStateMessage, TopicKey, TopicKind};
+use shroud_msg::{CloudView, CollisionMessage, TopicKey, TopicKind};
 use shroud_ros2::{RosMessage, TFMessage};
 use shroud_ros2_bridge::{
     arm_markers, mount_transform, point_cloud2_of, speed_scale_of, surrogate_markers,
     verdict_status, CloudMount,
 };
 use shroud_surrogate::SurrogateWire;
+use shroud_viewers::scene::RecentJoints;
 use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
@@ -40,7 +41,7 @@ pub struct VerdictOutput {
     pub shapes: RosPublisher,
     pub model: ArmModel,
     pub frame_id: String,
-    pub latest_joints: Arc<Mutex<Option<JointStateMessage>>>,
+    pub latest_joints: Arc<Mutex<RecentJoints>>,
     pub pace_ns: u64,
     pub last_shapes_ns: Mutex<Option<u64>>,
 }
@@ -62,11 +63,14 @@ impl VerdictOutput {
             }
             *last = Some(now);
         }
+        // The pose the verdict answered: drawn on a later pose, its colours
+        // would describe clearances that pose never had.
         let joints = self
             .latest_joints
             .lock()
             .unwrap_or_else(|p| p.into_inner())
-            .clone();
+            .stamped(verdict.joints_stamp_ns)
+            .cloned();
         let Some(joints) = joints else {
             return;
         };
