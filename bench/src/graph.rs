@@ -69,6 +69,10 @@ impl BenchGraph {
             multicast: Some(OnOff::Off),
             shm: OnOff::On,
             zenoh_config: None,
+            tls_root_ca: None,
+            tls_certificate: None,
+            tls_private_key: None,
+            access_control: None,
         };
         let session = hub.open().await?;
         let endpoint = session

@@ -13,6 +13,7 @@ pub mod launch;
 pub mod node;
 pub mod parse;
 pub mod recording;
+pub mod router;
 pub mod runtime;
 pub mod timing;
 pub mod to_foxglove;

@@ -2,6 +2,7 @@
 
 mod blend;
 mod blend_cmd;
+mod certs;
 mod demo;
 pub mod fit;
 mod query;
@@ -65,6 +66,12 @@ pub enum Command {
     /// The G1 smooth fitter's domain (paper 004): mesh classification and the
     /// dimension of its G1 space (`--info`).
     Smooth(smooth::SmoothArgs),
+    /// A development certificate authority and a certificate per host, for
+    /// mutual TLS between a graph's hosts.
+    Certs(certs::CertsArgs),
+    /// A zenoh router: where hosts meet, with mutual TLS and the access
+    /// control of a graph file's hosts; its status is on the bus.
+    Router(crate::router::RouterArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -83,5 +90,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Record(args) => crate::recording::record(args),
         Command::Replay(args) => crate::recording::replay(args),
         Command::Mcap(command) => crate::recording::run_mcap(&command),
+        Command::Certs(args) => certs::run(&args),
+        Command::Router(args) => crate::router::run(args),
     }
 }

@@ -35,6 +35,11 @@ pub struct LaunchArgs {
     /// Check the file, print its wiring (text, then a Mermaid flowchart) and exit.
     #[arg(long, conflicts_with = "check")]
     pub graph: bool,
+    /// Start only the nodes of this host of the file's `[hosts]`: the
+    /// launcher runs the host's zenoh router (its endpoints, TLS and the
+    /// graph's access control) and its nodes are that router's clients.
+    #[arg(long)]
+    pub host: Option<String>,
 }
 
 pub fn run(args: LaunchArgs) -> Result<()> {
@@ -48,12 +53,30 @@ pub fn run(args: LaunchArgs) -> Result<()> {
         .with_context(|| format!("cannot read launch file {}", args.file.display()))?;
     let context = || format!("launch file {}", args.file.display());
     let file = LaunchFile::from_toml_str(&text).with_context(context)?;
+    if let Some(host) = &args.host {
+        file.host(host).with_context(context)?;
+    }
+    anyhow::ensure!(
+        args.host.is_some() || file.hosts.is_empty() || args.check || args.graph,
+        "{} places its nodes on hosts ({}): start each host's with --host NAME",
+        args.file.display(),
+        file.host_names().join(", ")
+    );
     // Every node's settings against its own parser, before anything runs.
     let nodes = plan::plan(&file).with_context(context)?;
+    let nodes: Vec<_> = (nodes.into_iter())
+        .filter(|n| args.host.is_none() || n.spec.host == args.host)
+        .collect();
     if args.check {
         for node in &nodes {
             let (name, kind) = (&node.spec.name, node.spec.kind);
-            println!("{name}: shroud node {kind} {}", node.args.join(" "));
+            let host = node
+                .spec
+                .host
+                .as_deref()
+                .map(|h| format!(" (host {h})"))
+                .unwrap_or_default();
+            println!("{name}{host}: shroud node {kind} {}", node.args.join(" "));
         }
         return Ok(());
     }
@@ -77,7 +100,13 @@ pub fn run(args: LaunchArgs) -> Result<()> {
         .context("cannot start the async runtime")?;
     let duration = (args.duration > 0.0).then(|| Duration::from_secs_f64(args.duration));
     let shm = file.zenoh.shm;
-    let outcome = runtime.block_on(supervise::run_graph(file, nodes, args.node_log, duration));
+    let outcome = runtime.block_on(supervise::run_graph(
+        file,
+        args.host,
+        nodes,
+        args.node_log,
+        duration,
+    ));
     // The children have stopped and the session is closed: their segments and
     // ours are orphans now, which zenoh alone would leave in /dev/shm.
     if shm {

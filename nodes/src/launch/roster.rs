@@ -23,13 +23,30 @@ struct Child {
 
 /// Every child's record, shared by the supervising tasks, and the summary's
 /// count of messages it could not decode.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct Roster {
+    /// The launcher's status name.
+    name: Arc<str>,
     children: Arc<Mutex<BTreeMap<String, Child>>>,
     dropped_malformed: Arc<AtomicU64>,
 }
 
+impl Default for Roster {
+    fn default() -> Self {
+        Self::named(LAUNCHER_NAME)
+    }
+}
+
 impl Roster {
+    /// A roster published as status `name`.
+    pub fn named(name: &str) -> Self {
+        Self {
+            name: name.into(),
+            children: Arc::default(),
+            dropped_malformed: Arc::default(),
+        }
+    }
+
     fn lock(&self) -> MutexGuard<'_, BTreeMap<String, Child>> {
         self.children.lock().unwrap_or_else(|p| p.into_inner())
     }
@@ -56,7 +73,7 @@ impl Roster {
     /// The status message: `restarts.<node>` and `starts.<node>` counters,
     /// `pid.<node>` and `state.<node>` labels, and `dropped_malformed`.
     pub fn status(&self, started: Instant) -> NodeStatusMessage {
-        let mut msg = NodeStatusMessage::new(LAUNCHER_NAME, "launch", std::process::id());
+        let mut msg = NodeStatusMessage::new(&self.name, "launch", std::process::id());
         msg.stamp_ns = unix_ns();
         msg.uptime_s = started.elapsed().as_secs_f64();
         msg.counters.insert(
@@ -78,7 +95,7 @@ impl Roster {
 
 /// Publishes the roster every `period` until aborted.
 pub async fn publish(session: zenoh::Session, topics: Topics, roster: Roster, period: Duration) {
-    let Ok(key) = topics.key(TopicKind::Status, LAUNCHER_NAME) else {
+    let Ok(key) = topics.key(TopicKind::Status, &roster.name) else {
         return;
     };
     let publisher = match crate::transport::topic_publisher(&session, key, TopicKind::Status) {

@@ -9,7 +9,7 @@ use super::plan::PlannedNode;
 use super::roster::{self, Roster};
 use crate::transport::{shutdown_signal, OnOff, ZenohArgs};
 use anyhow::Result;
-use shroud_graph::launch::{Backoff, LaunchFile, RestartDecision};
+use shroud_graph::launch::{Backoff, LaunchFile, RestartDecision, LAUNCHER_NAME};
 use std::time::{Duration, Instant};
 use tokio::sync::watch;
 use tokio::task::JoinSet;
@@ -34,12 +34,13 @@ enum OutcomeKind {
 
 pub async fn run_graph(
     file: LaunchFile,
+    host: Option<String>,
     planned: Vec<PlannedNode>,
     log: String,
     duration: Option<Duration>,
 ) -> Result<()> {
     let z = &file.zenoh;
-    let hub = ZenohArgs {
+    let mut hub = ZenohArgs {
         namespace: file.namespace.clone(),
         mode: z.mode.clone(),
         connect: z.connect.clone(),
@@ -47,24 +48,37 @@ pub async fn run_graph(
         multicast: Some(if z.multicast { OnOff::On } else { OnOff::Off }),
         shm: if z.shm { OnOff::On } else { OnOff::Off },
         zenoh_config: None,
+        tls_root_ca: None,
+        tls_certificate: None,
+        tls_private_key: None,
+        access_control: None,
     };
+    if let Some(host) = &host {
+        hub.serve_host(&file, host)?;
+    }
     let session = hub.open().await?;
-    let mut connect: Vec<String> = session
-        .info()
-        .locators()
-        .await
-        .iter()
+    let locators: Vec<String> = (session.info().locators().await.iter())
         .map(|l| l.to_string())
         .collect();
-    connect.extend(z.connect.iter().cloned());
+    let connect = node_endpoints(&file, host.as_deref(), locators);
     output::out(format!(
-        "[launch] namespace {:?}, nodes connect to {}",
+        "[launch] namespace {:?}{}, nodes connect to {}",
         file.namespace,
+        host.as_deref()
+            .map(|h| format!(", host {h} (a router)"))
+            .unwrap_or_default(),
         connect.join(", ")
     ));
     let wiring = Wiring {
         namespace: file.namespace.clone(),
-        mode: z.mode.clone(),
+        // A host's nodes are its router's clients: they link to nothing
+        // else, so every sample from another host passes that router's
+        // access control.
+        mode: if host.is_some() {
+            "client".into()
+        } else {
+            z.mode.clone()
+        },
         connect,
         multicast: z.multicast,
         shm: z.shm,
@@ -72,7 +86,7 @@ pub async fn run_graph(
     };
     let grace = Duration::from_secs_f64(file.shutdown_grace_s);
     let (stop_tx, stop_rx) = watch::channel(false);
-    let roster = Roster::default();
+    let roster = Roster::named(&launcher_name(host.as_deref()));
     let mut nodes = JoinSet::new();
     for node in planned {
         nodes.spawn(supervise(
@@ -161,6 +175,30 @@ pub async fn run_graph(
     anyhow::ensure!(failed.is_empty(), "nodes failed: {}", failed.join(", "));
     output::out("[launch] all nodes stopped cleanly");
     Ok(())
+}
+
+/// Where the nodes connect: the launcher's own endpoints and the file's
+/// `zenoh.connect`; on a host, only the launcher's loopback endpoints (the
+/// host's router), never the other hosts.
+fn node_endpoints(file: &LaunchFile, host: Option<&str>, locators: Vec<String>) -> Vec<String> {
+    match host {
+        None => locators
+            .into_iter()
+            .chain(file.zenoh.connect.iter().cloned())
+            .collect(),
+        Some(_) => (locators.into_iter())
+            .filter(|l| l.starts_with("tcp/127.0.0.1:") || l.starts_with("tcp/[::1]:"))
+            .collect(),
+    }
+}
+
+/// The launcher's status name: `launcher`, or `launcher.<host>` so that
+/// every host's launcher has its own.
+fn launcher_name(host: Option<&str>) -> String {
+    match host {
+        None => LAUNCHER_NAME.to_owned(),
+        Some(host) => format!("{LAUNCHER_NAME}.{host}"),
+    }
 }
 
 /// Reports how a child ended; true if it succeeded.

@@ -11,8 +11,9 @@ pub struct ZenohArgs {
     /// Namespace of every key: `shroud/<namespace>/...`.
     #[arg(long, default_value = "demo")]
     pub namespace: String,
-    /// zenoh mode: `peer` (default; talks directly to other processes) or
-    /// `client` (through a zenohd router given with --connect).
+    /// zenoh mode: `peer` (default; talks directly to other processes),
+    /// `client` (through a router given with --connect), or `router` (what
+    /// `shroud router` and a launcher started with `--host` run).
     #[arg(long, default_value = "peer")]
     pub mode: String,
     /// Endpoint to connect to, e.g. `tcp/192.168.1.10:7447` (a zenohd router or
@@ -33,6 +34,21 @@ pub struct ZenohArgs {
     /// A zenoh JSON5 configuration file; the options above override it.
     #[arg(long, value_name = "FILE")]
     pub zenoh_config: Option<PathBuf>,
+    /// The certificate authority (PEM) every host's certificate chains to:
+    /// with --tls-certificate and --tls-private-key, `tls/` links are mutual
+    /// TLS (`shroud certs` makes all three).
+    #[arg(long, value_name = "FILE", requires_all = ["tls_certificate", "tls_private_key"])]
+    pub tls_root_ca: Option<PathBuf>,
+    /// This host's certificate (PEM), its common name the host's name.
+    #[arg(long, value_name = "FILE", requires = "tls_root_ca")]
+    pub tls_certificate: Option<PathBuf>,
+    /// This host's private key (PEM).
+    #[arg(long, value_name = "FILE", requires = "tls_root_ca")]
+    pub tls_private_key: Option<PathBuf>,
+    /// zenoh's `access_control` section (JSON), set by the launcher and
+    /// `shroud router` from a graph file's hosts.
+    #[arg(skip)]
+    pub access_control: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -60,8 +76,8 @@ impl ZenohArgs {
             None => zenoh::Config::default(),
         };
         anyhow::ensure!(
-            matches!(self.mode.as_str(), "peer" | "client"),
-            "--mode must be peer or client, not {:?}",
+            matches!(self.mode.as_str(), "peer" | "client" | "router"),
+            "--mode must be peer, client or router, not {:?}",
             self.mode
         );
         let listen = if self.listen.is_empty() && self.mode == "peer" {
@@ -94,12 +110,47 @@ impl ZenohArgs {
                 r#"{ router: true, peer: true, client: true }"#.to_string(),
             ),
         ];
-        for (key, value) in settings {
+        let tls = self.tls_settings()?;
+        let access = self
+            .access_control
+            .iter()
+            .map(|acl| ("access_control", acl.clone()));
+        for (key, value) in settings.into_iter().chain(tls).chain(access) {
             config
                 .insert_json5(key, &value)
                 .map_err(|e| anyhow::anyhow!("zenoh config {key} = {value}: {e}"))?;
         }
         Ok(config)
+    }
+
+    /// Mutual TLS on every `tls/` link (zenoh 1.x `transport/link/tls`): the
+    /// listener accepts only certificates chained to the root (TLS 1.3), the
+    /// connecting side checks the listener's name against its certificate.
+    fn tls_settings(&self) -> Result<Vec<(&'static str, String)>> {
+        let (Some(ca), Some(cert), Some(key)) = (
+            &self.tls_root_ca,
+            &self.tls_certificate,
+            &self.tls_private_key,
+        ) else {
+            return Ok(Vec::new());
+        };
+        for (flag, path) in [
+            ("--tls-root-ca", ca),
+            ("--tls-certificate", cert),
+            ("--tls-private-key", key),
+        ] {
+            anyhow::ensure!(path.is_file(), "{flag} {}: no such file", path.display());
+        }
+        let path = |p: &PathBuf| json(&p.display().to_string());
+        Ok(vec![
+            ("transport/link/tls/root_ca_certificate", path(ca)),
+            ("transport/link/tls/listen_certificate", path(cert)),
+            ("transport/link/tls/listen_private_key", path(key)),
+            ("transport/link/tls/connect_certificate", path(cert)),
+            ("transport/link/tls/connect_private_key", path(key)),
+            ("transport/link/tls/enable_mtls", "true".into()),
+            ("transport/link/tls/verify_name_on_connect", "true".into()),
+        ])
     }
 
     /// Opens a session with these options.

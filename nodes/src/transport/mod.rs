@@ -5,6 +5,7 @@
 
 mod args;
 mod clock;
+mod host;
 mod lifeline;
 mod publish;
 mod qos;

@@ -1,6 +1,7 @@
 //! The launch-file schema (TOML). Documented for users in `launch/README.md`.
 
 use super::error::LaunchError;
+use super::hosts::HostSpec;
 #[cfg(test)]
 use super::kind::Direction;
 use super::kind::NodeKind;
@@ -101,6 +102,10 @@ pub struct NodeSpec {
     /// The whole graph stops when this node stops for good (e.g. a test driver).
     #[serde(default)]
     pub critical: bool,
+    /// The host (a key of `[hosts]`) the node runs on: `shroud launch FILE
+    /// --host NAME` starts only that host's nodes.
+    #[serde(default)]
+    pub host: Option<String>,
     /// The line of the file where the node's table starts (1-based; 0 when the
     /// spec was not read from a file).
     #[serde(skip)]
@@ -160,6 +165,9 @@ pub struct LaunchFile {
     /// producer among the nodes.
     #[serde(default)]
     pub external: Vec<String>,
+    /// The computers the graph runs on, by name (none: one machine).
+    #[serde(default)]
+    pub hosts: BTreeMap<String, HostSpec>,
     #[serde(rename = "node", default, deserialize_with = "nodes_with_offsets")]
     pub nodes: Vec<NodeSpec>,
 }

@@ -66,6 +66,7 @@ impl LaunchFile {
             }
             check_node(node)?;
         }
+        self.check_hosts()?;
         check_graph(self)
     }
 }

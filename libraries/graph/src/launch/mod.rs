@@ -5,15 +5,18 @@
 //! graph, and the check of each node's settings against its own options, live
 //! in `shroud-nodes`.
 
+mod access;
 mod backoff;
 mod draw;
 mod error;
 mod file;
+mod hosts;
 mod kind;
 mod load;
 mod sectors;
 mod wiring;
 
+pub use access::{AccessControl, AclPolicy, AclRule, AclSubject};
 pub use backoff::{Backoff, RestartDecision};
 pub use draw::{wiring_mermaid, wiring_text};
 pub use error::LaunchError;
@@ -21,5 +24,6 @@ pub use file::{
     LaunchFile, NodeSpec, RestartPolicy, StreamNames, SummarySpec, ZenohSpec, LAUNCHER_FLAGS,
     LAUNCHER_NAME,
 };
+pub use hosts::{HostSpec, TlsSpec};
 pub use kind::{Direction, FlagStyle, NodeKind, Port};
 pub use wiring::{check_graph, Edge, Source, Stream, Wire};
