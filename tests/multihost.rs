@@ -10,48 +10,42 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 use zenoh::Wait;
 
-/// A sensor host and an arm host around a router host (`tls` paths are
-/// filled in with the test's directory).
-const CELL: &str = r#"
-namespace = "cell"
-[hosts.hub]
-router = true
-listen = ["tls/127.0.0.1:PORT"]
-tls = { root_ca = "DIR/ca.pem", certificate = "DIR/hub.pem", private_key = "DIR/hub.key" }
-[hosts.sensor]
-connect = ["tls/127.0.0.1:PORT"]
-tls = { root_ca = "DIR/ca.pem", certificate = "DIR/sensor.pem", private_key = "DIR/sensor.key" }
-[hosts.arm]
-connect = ["tls/127.0.0.1:PORT"]
-tls = { root_ca = "DIR/ca.pem", certificate = "DIR/arm.pem", private_key = "DIR/arm.key" }
+/// `launch/hosts.toml` for this test: its router on `port`, its
+/// certificates in `dir` (written there by `shroud certs`, with an
+/// `observer` and an `intruder` that own no stream), its files found from
+/// anywhere. Returns the graph file's path.
+fn hosts_graph(dir: &Path, port: u16) -> String {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let text = std::fs::read_to_string(format!("{root}/launch/hosts.toml"))
+        .unwrap()
+        .replace("127.0.0.1:7450", &format!("127.0.0.1:{port}"))
+        .replace("\"certs/", &format!("\"{}/", dir.display()))
+        .replace("\"launch/", &format!("\"{root}/launch/"));
+    let graph = dir.join("hosts.toml");
+    std::fs::write(&graph, text).unwrap();
+    let graph = graph.display().to_string();
+    let out = dir.display().to_string();
+    let args = [
+        "certs", "--graph", &graph, "--out", &out, "--host", "observer", "--host", "intruder",
+    ];
+    let done = std::process::Command::new(env!("CARGO_BIN_EXE_shroud"))
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        done.status.success(),
+        "{}",
+        String::from_utf8_lossy(&done.stderr)
+    );
+    graph
+}
 
-[[node]]
-name = "scanner"
-kind = "scanner"
-host = "sensor"
-outputs = { cloud = "table" }
-
-[[node]]
-name = "fit"
-kind = "fit"
-host = "sensor"
-inputs = { cloud = "table" }
-outputs = { surrogate = "table" }
-
-[[node]]
-name = "guard"
-kind = "guard"
-host = "arm"
-inputs = { surrogate = "table", joints = "ur" }
-outputs = { collision = "ur" }
-
-[[node]]
-name = "arm"
-kind = "arm"
-host = "arm"
-inputs = { collision = "ur" }
-outputs = { joints = "ur" }
-"#;
+/// `shroud router` for the graph's router host, once it listens.
+fn router(graph: &str) -> Proc {
+    let router = Proc::start(&["--log", "info", "router", "--graph", graph, "--host", "hub"]);
+    router.expect_line("listening on", Duration::from_secs(20));
+    router
+}
 
 /// A client of the router at `endpoint` holding `identity`'s certificate
 /// from `dir` (None: only trusting the authority, presenting none).
@@ -93,40 +87,12 @@ fn the_router_lets_each_host_publish_only_its_own_streams() {
     let dir = tempfile::tempdir().unwrap();
     let port = free_port();
     let endpoint = format!("tls/127.0.0.1:{port}");
-    let graph = dir.path().join("cell.toml");
-    let text = CELL
-        .replace("PORT", &port.to_string())
-        .replace("DIR", &dir.path().display().to_string());
-    std::fs::write(&graph, text).unwrap();
-    let graph = graph.display().to_string();
-    let out = dir.path().display().to_string();
-
-    // The authority and every host's certificate, and a stranger's signed
-    // by the same authority.
-    let certs = |args: &[&str]| {
-        let mut all = vec!["certs", "--out", &out];
-        all.extend(args);
-        let done = std::process::Command::new(env!("CARGO_BIN_EXE_shroud"))
-            .args(&all)
-            .output()
-            .unwrap();
-        assert!(
-            done.status.success(),
-            "{}",
-            String::from_utf8_lossy(&done.stderr)
-        );
-    };
-    certs(&["--graph", &graph]);
-    certs(&["--host", "intruder", "--host", "observer"]);
-
-    let router = Proc::start(&[
-        "--log", "info", "router", "--graph", &graph, "--host", "hub",
-    ]);
-    router.expect_line("listening on", Duration::from_secs(20));
+    let graph = hosts_graph(dir.path(), port);
+    let router = router(&graph);
 
     let observer = client(dir.path(), &endpoint, Some("observer")).expect("observer connects");
     let seen = observer
-        .declare_subscriber("shroud/cell/**")
+        .declare_subscriber("shroud/demo/**")
         .wait()
         .unwrap();
     let arm = client(dir.path(), &endpoint, Some("arm")).expect("arm connects");
@@ -138,16 +104,16 @@ fn the_router_lets_each_host_publish_only_its_own_streams() {
     );
 
     let puts = [
-        (&arm, "shroud/cell/collision/ur", "arm"),
-        (&arm, "shroud/cell/joints/ur", "arm"),
-        (&sensor, "shroud/cell/surrogate/table", "sensor"),
-        (&sensor, "shroud/cell/surrogate/table.s2", "sensor"),
-        (&sensor, "shroud/cell/collision/ur", "forged"),
-        (&sensor, "shroud/cell/joints/ur", "forged"),
-        (&arm, "shroud/cell/surrogate/table", "forged"),
-        (&intruder, "shroud/cell/collision/ur", "forged"),
-        (&intruder, "shroud/cell/surrogate/table", "forged"),
-        (&intruder, "shroud/cell/status/guard", "forged"),
+        (&arm, "shroud/demo/collision/demo_arm", "arm"),
+        (&arm, "shroud/demo/joints/demo_arm", "arm"),
+        (&sensor, "shroud/demo/surrogate/spheres", "sensor"),
+        (&sensor, "shroud/demo/surrogate/spheres.s2", "sensor"),
+        (&sensor, "shroud/demo/collision/demo_arm", "forged"),
+        (&sensor, "shroud/demo/joints/demo_arm", "forged"),
+        (&arm, "shroud/demo/surrogate/spheres", "forged"),
+        (&intruder, "shroud/demo/collision/demo_arm", "forged"),
+        (&intruder, "shroud/demo/surrogate/spheres", "forged"),
+        (&intruder, "shroud/demo/status/guard", "forged"),
     ];
     let mut received = std::collections::BTreeSet::new();
     let mut router_status = false;
@@ -159,7 +125,7 @@ fn the_router_lets_each_host_publish_only_its_own_streams() {
         std::thread::sleep(Duration::from_millis(50));
         while let Ok(Some(sample)) = seen.try_recv() {
             let key = sample.key_expr().to_string();
-            if key == "shroud/cell/status/router.hub" {
+            if key == "shroud/demo/status/router.hub" {
                 router_status = true;
                 continue;
             }
@@ -184,32 +150,8 @@ fn the_demo_runs_across_hosts_through_the_router() {
     let dir = tempfile::tempdir().unwrap();
     let port = free_port();
     let endpoint = format!("tls/127.0.0.1:{port}");
-    let root = env!("CARGO_MANIFEST_DIR");
-    let text = std::fs::read_to_string(format!("{root}/launch/hosts.toml"))
-        .unwrap()
-        .replace("127.0.0.1:7450", &format!("127.0.0.1:{port}"))
-        .replace("\"certs/", &format!("\"{}/", dir.path().display()))
-        .replace("\"launch/", &format!("\"{root}/launch/"));
-    let graph = dir.path().join("hosts.toml");
-    std::fs::write(&graph, text).unwrap();
-    let graph = graph.display().to_string();
-    let out = dir.path().display().to_string();
-    let done = std::process::Command::new(env!("CARGO_BIN_EXE_shroud"))
-        .args([
-            "certs", "--graph", &graph, "--out", &out, "--host", "observer",
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        done.status.success(),
-        "{}",
-        String::from_utf8_lossy(&done.stderr)
-    );
-
-    let router = Proc::start(&[
-        "--log", "info", "router", "--graph", &graph, "--host", "hub",
-    ]);
-    router.expect_line("listening on", Duration::from_secs(20));
+    let graph = hosts_graph(dir.path(), port);
+    let _router = router(&graph);
     let sensor = Proc::start(&["launch", &graph, "--host", "sensor"]);
     let arm = Proc::start(&["launch", &graph, "--host", "arm"]);
     let observer = client(dir.path(), &endpoint, Some("observer")).expect("observer connects");

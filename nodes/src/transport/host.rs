@@ -24,7 +24,11 @@ impl ZenohArgs {
             self.tls_private_key = Some(tls.private_key.clone().into());
         }
         self.access_control = match file.access_control(host)? {
-            Some(acl) => Some(serde_json::to_string(&acl).context("access control as JSON")?),
+            Some(acl) => {
+                let json = serde_json::to_string(&acl).context("access control as JSON")?;
+                tracing::debug!("host {host}: zenoh access_control = {json}");
+                Some(json)
+            }
             None => {
                 tracing::warn!(
                     "host {host}: the graph has no TLS, so no identities and no access control: \

@@ -195,47 +195,11 @@ fn policy(rule: &str, subject: &str) -> AclPolicy {
 mod tests {
     use super::*;
 
-    /// A sensor host, a fit host and an arm host around a router host.
-    pub(crate) const CELL: &str = r#"
-namespace = "cell"
-[hosts.hub]
-router = true
-listen = ["tls/10.0.0.1:7447"]
-tls = { root_ca = "certs/ca.pem", certificate = "certs/hub.pem", private_key = "certs/hub.key" }
-[hosts.sensor]
-connect = ["tls/10.0.0.1:7447"]
-tls = { root_ca = "certs/ca.pem", certificate = "certs/sensor.pem", private_key = "certs/sensor.key" }
-[hosts.arm]
-connect = ["tls/10.0.0.1:7447"]
-tls = { root_ca = "certs/ca.pem", certificate = "certs/arm.pem", private_key = "certs/arm.key" }
-
-[[node]]
-name = "scanner"
-kind = "scanner"
-host = "sensor"
-outputs = { cloud = "table" }
-
-[[node]]
-name = "fit"
-kind = "fit"
-host = "sensor"
-inputs = { cloud = "table" }
-outputs = { surrogate = "table" }
-
-[[node]]
-name = "guard"
-kind = "guard"
-host = "arm"
-inputs = { surrogate = "table", joints = "ur" }
-outputs = { collision = "ur" }
-
-[[node]]
-name = "arm"
-kind = "arm"
-host = "arm"
-inputs = { collision = "ur" }
-outputs = { joints = "ur" }
-"#;
+    /// The demo over a sensor host and an arm host around a router host.
+    const CELL: &str = include_str!(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../launch/hosts.toml"
+    ));
 
     fn cell() -> LaunchFile {
         LaunchFile::from_toml_str(CELL).unwrap()
@@ -290,9 +254,9 @@ outputs = { joints = "ur" }
     #[test]
     fn each_host_publishes_only_its_own_streams() {
         let acl = cell().access_control("arm").unwrap().unwrap();
-        let verdict = "shroud/cell/collision/ur";
-        let joints = "shroud/cell/joints/ur";
-        let surrogate = "shroud/cell/surrogate/table";
+        let verdict = "shroud/demo/collision/demo_arm";
+        let joints = "shroud/demo/joints/demo_arm";
+        let surrogate = "shroud/demo/surrogate/spheres";
         // The arm host's own processes publish its verdicts and joints.
         assert!(permits(&acl, None, "tcp", verdict));
         assert!(permits(&acl, None, "tcp", joints));
@@ -305,7 +269,7 @@ outputs = { joints = "ur" }
             &acl,
             Some("sensor"),
             "tls",
-            "shroud/cell/surrogate/table.s3"
+            "shroud/demo/surrogate/spheres.s3"
         ));
         assert!(!permits(&acl, Some("sensor"), "tls", verdict));
         assert!(!permits(&acl, Some("sensor"), "tls", joints));
@@ -313,7 +277,7 @@ outputs = { joints = "ur" }
             &acl,
             Some("sensor"),
             "tls",
-            "shroud/cell/status/guard"
+            "shroud/demo/status/guard"
         ));
         // The router relays everything; a stranger's certificate nothing.
         assert!(permits(&acl, Some("hub"), "tls", verdict));
@@ -323,7 +287,7 @@ outputs = { joints = "ur" }
             &acl,
             Some("sensor"),
             "tls",
-            "shroud/cell/cloud/other"
+            "shroud/demo/cloud/other"
         ));
     }
 
@@ -331,12 +295,17 @@ outputs = { joints = "ur" }
     fn the_router_host_lets_no_local_process_publish_a_stream() {
         let acl = cell().access_control("hub").unwrap().unwrap();
         assert!(!acl.subjects.iter().any(|s| s.id == LOCAL));
-        assert!(!permits(&acl, None, "tcp", "shroud/cell/collision/ur"));
+        assert!(!permits(
+            &acl,
+            None,
+            "tcp",
+            "shroud/demo/collision/demo_arm"
+        ));
         assert!(permits(
             &acl,
             Some("arm"),
             "tls",
-            "shroud/cell/collision/ur"
+            "shroud/demo/collision/demo_arm"
         ));
     }
 
@@ -360,12 +329,34 @@ outputs = { joints = "ur" }
 
     #[test]
     fn host_mistakes_are_named() {
+        let arm_node = "host = \"arm\"\ninputs = { collision";
+        let arm_tls = "\ntls = { root_ca = \"certs/ca.pem\", certificate = \"certs/arm.pem\", private_key = \"certs/arm.key\" }";
+        let hub_listen = "listen = [\"tls/127.0.0.1:7450\"]";
         let cases = [
-            (CELL.replace("host = \"arm\"\ninputs = { collision", "inputs = { collision"), "node \"arm\": names no host"),
-            (CELL.replace("host = \"arm\"\ninputs = { collision", "host = \"gripper\"\ninputs = { collision"), "host \"gripper\" is not in [hosts]"),
-            (CELL.replace("connect = [\"tls/10.0.0.1:7447\"]\ntls = { root_ca = \"certs/ca.pem\", certificate = \"certs/arm.pem\", private_key = \"certs/arm.key\" }", "connect = [\"tls/10.0.0.1:7447\"]"), "hosts.arm.tls: another host has TLS"),
-            (CELL.replace("listen = [\"tls/10.0.0.1:7447\"]", "listen = [\"tcp/10.0.0.1:7447\"]"), "hosts.hub.listen: \"tcp/10.0.0.1:7447\" is not a TLS endpoint"),
-            (CELL.replace("[hosts.arm]", "[hosts.\"a/b\"]"), "hosts.a/b.name"),
+            (
+                CELL.replace(arm_node, "inputs = { collision"),
+                "node \"arm\": names no host",
+            ),
+            (
+                CELL.replace(arm_node, "host = \"gripper\"\ninputs = { collision"),
+                "host \"gripper\" is not in [hosts]",
+            ),
+            (
+                CELL.replace(arm_tls, ""),
+                "hosts.arm.tls: another host has TLS",
+            ),
+            (
+                CELL.replace(hub_listen, "listen = [\"tcp/127.0.0.1:7450\"]"),
+                "hosts.hub.listen: \"tcp/127.0.0.1:7450\" is not a TLS endpoint",
+            ),
+            (
+                CELL.replace("[hosts.arm]", "[hosts.\"a/b\"]"),
+                "hosts.a/b.name",
+            ),
+            (
+                CELL.replace("max_clock_offset = 0.001\n", ""),
+                "node \"guard\": reads surrogate/spheres from another host: set max_clock_offset",
+            ),
         ];
         for (text, expected) in cases {
             let error = LaunchFile::from_toml_str(&text).unwrap_err().to_string();

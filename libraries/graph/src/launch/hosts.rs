@@ -3,8 +3,10 @@
 
 use super::error::LaunchError;
 use super::file::LaunchFile;
+use super::kind::{Direction, NodeKind};
 use serde::Deserialize;
 use shroud_msg::check_name;
+use std::collections::BTreeMap;
 
 /// One computer of the graph and how its launcher meets the others'.
 #[derive(Debug, Clone, PartialEq, Default, Deserialize)]
@@ -69,6 +71,7 @@ impl LaunchFile {
         for (name, host) in &self.hosts {
             check_host(name, host, with_tls > 0)?;
         }
+        self.check_clock_offsets()?;
         for node in &self.nodes {
             match &node.host {
                 Some(host) if self.hosts.contains_key(host) => {}
@@ -84,6 +87,41 @@ impl LaunchFile {
                         self.host_names().join(", ")
                     )))
                 }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl LaunchFile {
+    /// A node that ages what another host sent (a fit node's clouds, a
+    /// guard's surrogates and joint states) counts the transit on two
+    /// hosts' clocks: it must state the bound on their offset
+    /// (`max_clock_offset`, whose default is one host's), which it then adds
+    /// to every transit and checks every message against.
+    fn check_clock_offsets(&self) -> Result<(), LaunchError> {
+        let mut producer_host = BTreeMap::new();
+        for node in &self.nodes {
+            for wire in node.wires()? {
+                if wire.port.direction == Direction::Output {
+                    producer_host.insert(wire.stream.to_string(), node.host.clone());
+                }
+            }
+        }
+        let ages = |kind: NodeKind| matches!(kind, NodeKind::Fit | NodeKind::Guard);
+        for node in self.nodes.iter().filter(|n| ages(n.kind)) {
+            let stated = node.settings.contains_key("max_clock_offset")
+                || node.settings.contains_key("max-clock-offset");
+            let remote = node.wires()?.into_iter().find(|w| {
+                w.port.direction == Direction::Input
+                    && producer_host.get(&w.stream.to_string()) != Some(&node.host)
+            });
+            if let (false, Some(wire)) = (stated, remote) {
+                return Err(node.error(format!(
+                    "reads {} from another host: set max_clock_offset (seconds) to the bound \
+                     on the hosts' clock offset (its default, 0.001, is one host's)",
+                    wire.stream
+                )));
             }
         }
         Ok(())
