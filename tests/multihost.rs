@@ -6,6 +6,7 @@
 mod common;
 
 use common::{free_port, Proc};
+use shroud_msg::NodeStatusMessage;
 use std::path::Path;
 use std::time::{Duration, Instant};
 use zenoh::Wait;
@@ -116,17 +117,18 @@ fn the_router_lets_each_host_publish_only_its_own_streams() {
         (&intruder, "shroud/demo/status/guard", "forged"),
     ];
     let mut received = std::collections::BTreeSet::new();
-    let mut router_status = false;
+    let forged_per_round = puts.iter().filter(|(_, _, who)| *who == "forged").count() as u64;
+    let mut rounds = 0;
     let deadline = Instant::now() + Duration::from_secs(5);
     while Instant::now() < deadline {
         for (session, key, who) in &puts {
             session.put(*key, *who).wait().unwrap();
         }
+        rounds += 1;
         std::thread::sleep(Duration::from_millis(50));
         while let Ok(Some(sample)) = seen.try_recv() {
             let key = sample.key_expr().to_string();
-            if key == "shroud/demo/status/router.hub" {
-                router_status = true;
+            if key.starts_with("shroud/demo/status/router") {
                 continue;
             }
             let who = String::from_utf8_lossy(&sample.payload().to_bytes()).into_owned();
@@ -139,7 +141,26 @@ fn the_router_lets_each_host_publish_only_its_own_streams() {
         .map(|(_, key, who)| (key.to_string(), who.to_string()))
         .collect();
     assert_eq!(received, expected, "router output:\n{}", router.output());
-    assert!(router_status, "the router's status is on the bus");
+    // Every forged message was refused at the router, and counted in its
+    // status: zenoh's put returned Ok to the forger.
+    let statuses = observer
+        .declare_subscriber("shroud/demo/status/router.hub")
+        .wait()
+        .unwrap();
+    let refused = forged_per_round * rounds;
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let mut counted = None;
+    while Instant::now() < deadline && counted != Some(refused) {
+        if let Ok(Some(sample)) = statuses.recv_timeout(Duration::from_millis(500)) {
+            let status = NodeStatusMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
+            counted = Some(status.counter("zenoh_dropped_access_control"));
+        }
+    }
+    assert_eq!(
+        counted,
+        Some(refused),
+        "refused messages counted in the router's status"
+    );
 }
 
 /// `launch/hosts.toml` on loopback: the router host, then each host's

@@ -4,6 +4,7 @@
 //! dashboards and tests see restart counts.
 
 use crate::transport::unix_ns;
+use shroud_graph::metrics::{names, ZenohDrops};
 use shroud_msg::{NodeStatusMessage, TopicKind, Topics};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -72,14 +73,23 @@ impl Roster {
 
     /// The status message: `restarts.<node>` and `starts.<node>` counters,
     /// `pid.<node>` and `state.<node>` labels, and `dropped_malformed`.
-    pub fn status(&self, started: Instant) -> NodeStatusMessage {
+    pub fn status(&self, started: Instant, drops: Option<ZenohDrops>) -> NodeStatusMessage {
         let mut msg = NodeStatusMessage::new(&self.name, "launch", std::process::id());
         msg.stamp_ns = unix_ns();
         msg.uptime_s = started.elapsed().as_secs_f64();
         msg.counters.insert(
-            shroud_graph::metrics::names::DROPPED_MALFORMED.name.into(),
+            names::DROPPED_MALFORMED.name.into(),
             self.dropped_malformed.load(Ordering::Relaxed),
         );
+        if let Some(drops) = drops {
+            let counters = [
+                (names::ZENOH_DROPPED_ACCESS_CONTROL, drops.access_control),
+                (names::ZENOH_DROPPED_CONGESTION, drops.congestion),
+            ];
+            for (counter, value) in counters {
+                msg.counters.insert(counter.name.into(), value);
+            }
+        }
         for (name, child) in self.lock().iter() {
             msg.counters.insert(format!("starts.{name}"), child.starts);
             msg.counters
@@ -109,7 +119,8 @@ pub async fn publish(session: zenoh::Session, topics: Topics, roster: Roster, pe
     let mut tick = tokio::time::interval(period);
     loop {
         tick.tick().await;
-        if let Ok(bytes) = roster.status(started).to_bytes() {
+        let drops = crate::transport::session_drops(&session).await;
+        if let Ok(bytes) = roster.status(started, drops).to_bytes() {
             let _ = publisher.put(bytes).wait();
         }
     }
@@ -127,7 +138,11 @@ mod tests {
         roster.started("fit", 11);
         roster.started("guard", 12);
         roster.malformed();
-        let msg = roster.status(Instant::now());
+        let drops = ZenohDrops {
+            access_control: 3,
+            ..ZenohDrops::default()
+        };
+        let msg = roster.status(Instant::now(), Some(drops));
         assert_eq!(msg.node, LAUNCHER_NAME);
         assert_eq!(msg.kind, "launch");
         assert_eq!(msg.counter("restarts.fit"), 1);
@@ -139,5 +154,6 @@ mod tests {
             msg.counter(shroud_graph::metrics::names::DROPPED_MALFORMED.name),
             1
         );
+        assert_eq!(msg.counter(names::ZENOH_DROPPED_ACCESS_CONTROL.name), 3);
     }
 }

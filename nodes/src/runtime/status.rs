@@ -3,7 +3,8 @@
 //! leaves its final counters behind).
 
 use super::context::NodeContext;
-use crate::transport::unix_ns;
+use crate::transport::{session_drops, unix_ns};
+use shroud_graph::metrics::names::{ZENOH_DROPPED_ACCESS_CONTROL, ZENOH_DROPPED_CONGESTION};
 use shroud_msg::{NodeStatusMessage, TopicKind};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -21,6 +22,12 @@ pub(super) async fn publish_status(
     };
     loop {
         tick.tick().await;
+        if let Some(drops) = session_drops(&ctx.session).await {
+            ctx.metrics
+                .set_counter(ZENOH_DROPPED_ACCESS_CONTROL, drops.access_control);
+            ctx.metrics
+                .set_counter(ZENOH_DROPPED_CONGESTION, drops.congestion);
+        }
         writer.publish(&ctx);
     }
 }

@@ -105,6 +105,12 @@ impl ZenohArgs {
             // logical clock, i.e. its wall clock): the receivers count the
             // transit, and whatever held a sample up before their callbacks
             // ran, toward the data's age.
+            // The session's own admin space answers `session_drops` (what
+            // zenoh dropped, for the status messages).
+            (
+                "adminspace",
+                "{ enabled: true, permissions: { read: true, write: false } }".to_string(),
+            ),
             (
                 "timestamping/enabled",
                 r#"{ router: true, peer: true, client: true }"#.to_string(),
@@ -187,9 +193,49 @@ mod tests {
     fn builds_a_config_and_rejects_bad_modes() {
         let w = Wrap::parse_from(["x", "--connect", "tcp/127.0.0.1:7447", "--shm", "off"]);
         assert!(w.z.config().is_ok());
-        let w = Wrap::parse_from(["x", "--mode", "router"]);
+        let w = Wrap::parse_from(["x", "--mode", "bridge"]);
         assert!(w.z.config().unwrap_err().to_string().contains("--mode"));
         let w = Wrap::parse_from(["x", "--connect", "not an endpoint"]);
         assert!(w.z.config().is_err());
+    }
+
+    #[test]
+    fn tls_files_are_checked_and_set_for_both_ends_of_a_link() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = |name: &str| {
+            let path = dir.path().join(name);
+            std::fs::write(&path, "pem").unwrap();
+            path.display().to_string()
+        };
+        let (ca, cert, key) = (file("ca.pem"), file("h.pem"), file("h.key"));
+        let tls = [
+            "--tls-root-ca",
+            &ca,
+            "--tls-certificate",
+            &cert,
+            "--tls-private-key",
+            &key,
+        ];
+        let w = Wrap::parse_from(["x"].into_iter().chain(tls));
+        let settings = w.z.tls_settings().unwrap();
+        let keys: Vec<&str> = settings.iter().map(|(k, _)| *k).collect();
+        assert!(keys.contains(&"transport/link/tls/connect_certificate"));
+        assert!(settings.contains(&("transport/link/tls/enable_mtls", "true".into())));
+        let missing = dir.path().join("none.key").display().to_string();
+        let tls = [
+            "--tls-root-ca",
+            &ca,
+            "--tls-certificate",
+            &cert,
+            "--tls-private-key",
+            &missing,
+        ];
+        let w = Wrap::parse_from(["x"].into_iter().chain(tls));
+        let error = w.z.config().unwrap_err().to_string();
+        assert!(
+            error.contains("--tls-private-key") && error.contains("no such file"),
+            "{error}"
+        );
+        assert!(Wrap::try_parse_from(["x", "--tls-root-ca", &ca]).is_err());
     }
 }

@@ -12,6 +12,7 @@ mod qos;
 mod shm_cleanup;
 mod signal;
 mod wait_queue;
+mod zenoh_drops;
 
 pub use args::{OnOff, ZenohArgs};
 pub use clock::{monotonic_ns, sample_published_ns, unix_ns};
@@ -24,3 +25,4 @@ pub use qos::topic_publisher;
 pub use shm_cleanup::{is_zenoh_segment, release_shm_segments};
 pub use signal::shutdown_signal;
 pub use wait_queue::{Backlog, WaitQueue};
+pub use zenoh_drops::session_drops;

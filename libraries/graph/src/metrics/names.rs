@@ -274,6 +274,16 @@ pub const SENT_COPY: Counter = counter(
     &[Scanner, Serial, Can, Blend],
     "clouds sent by copy (below 64 KiB, with --shm off, or with the segment full)",
 );
+pub const ZENOH_DROPPED_ACCESS_CONTROL: Counter = counter(
+    "zenoh_dropped_access_control",
+    &NodeKind::ALL,
+    "messages zenoh's access control refused in this process (a router's: publications by a host that does not own the stream; docs/multi-host.md); also in the router's and every launcher's status",
+);
+pub const ZENOH_DROPPED_CONGESTION: Counter = counter(
+    "zenoh_dropped_congestion",
+    &NodeKind::ALL,
+    "messages zenoh dropped on a congested link (publications with congestion control Drop); also in the router's and every launcher's status",
+);
 pub const OPENS: Counter = counter("opens", &[Serial, Can], "times the device was opened");
 pub const OPEN_FAILURES: Counter = counter(
     "open_failures",
@@ -527,6 +537,8 @@ pub const COUNTERS: &[Counter] = &[
     VIEWS_WRITTEN,
     VIEWS_FAILED,
     VIEWS_PACED,
+    ZENOH_DROPPED_ACCESS_CONTROL,
+    ZENOH_DROPPED_CONGESTION,
 ];
 
 /// Every gauge above.
