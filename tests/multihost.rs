@@ -188,7 +188,7 @@ fn the_demo_runs_across_hosts_through_the_router() {
         };
         let msg = shroud_msg::CollisionMessage::from_bytes(&sample.payload().to_bytes()).unwrap();
         if msg.views > 0 && msg.surrogate_sequence > 0 {
-            return;
+            return node_list_shows_every_host(dir.path(), &endpoint);
         }
         last = Some(format!("{:?}: {}", msg.verdict, msg.reason));
     }
@@ -197,4 +197,42 @@ fn the_demo_runs_across_hosts_through_the_router() {
         sensor.output(),
         arm.output()
     );
+}
+
+/// `shroud node list` through the router, as the docs show it, lists the
+/// nodes of every host and the router.
+fn node_list_shows_every_host(dir: &Path, endpoint: &str) {
+    let file = |name: &str| dir.join(name).display().to_string();
+    let listed = std::process::Command::new(env!("CARGO_BIN_EXE_shroud"))
+        .args([
+            "node",
+            "list",
+            "--namespace",
+            "demo",
+            "--mode",
+            "client",
+            "--connect",
+            endpoint,
+        ])
+        .args([
+            "--tls-root-ca",
+            &file("ca.pem"),
+            "--tls-certificate",
+            &file("observer.pem"),
+        ])
+        .args(["--tls-private-key", &file("observer.key")])
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&listed.stdout);
+    assert!(
+        listed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&listed.stderr)
+    );
+    for node in ["scanner", "fit", "guard", "arm", "router.hub"] {
+        assert!(
+            out.lines().any(|l| l.starts_with(node)),
+            "{node} not listed:\n{out}"
+        );
+    }
 }
