@@ -108,13 +108,19 @@ fn the_router_lets_each_host_publish_only_its_own_streams() {
         (&arm, "shroud/demo/collision/demo_arm", "arm"),
         (&arm, "shroud/demo/joints/demo_arm", "arm"),
         (&sensor, "shroud/demo/surrogate/spheres", "sensor"),
-        (&sensor, "shroud/demo/surrogate/spheres.s2", "sensor"),
+        // The fit node has no `sectors`: its host owns no sector stream.
+        (&sensor, "shroud/demo/surrogate/spheres.s2", "forged"),
         (&sensor, "shroud/demo/collision/demo_arm", "forged"),
         (&sensor, "shroud/demo/joints/demo_arm", "forged"),
         (&arm, "shroud/demo/surrogate/spheres", "forged"),
         (&intruder, "shroud/demo/collision/demo_arm", "forged"),
         (&intruder, "shroud/demo/surrogate/spheres", "forged"),
         (&intruder, "shroud/demo/status/guard", "forged"),
+        // Wildcard keys reach every subscriber they intersect: no host may
+        // put on one.
+        (&sensor, "shroud/demo/collision/*", "forged"),
+        (&arm, "shroud/demo/surrogate/**", "forged"),
+        (&intruder, "shroud/demo/**", "forged"),
     ];
     let mut received = std::collections::BTreeSet::new();
     let forged_per_round = puts.iter().filter(|(_, _, who)| *who == "forged").count() as u64;

@@ -7,6 +7,7 @@ pub mod bench;
 pub mod browser;
 pub mod device_rig;
 pub mod launched;
+pub mod netns;
 pub mod python;
 pub mod status_board;
 pub mod websocket;

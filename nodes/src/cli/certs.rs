@@ -41,7 +41,10 @@ pub struct CertsArgs {
 const CA_NAME: &str = "shroud development CA";
 
 pub fn run(args: &CertsArgs) -> Result<()> {
-    anyhow::ensure!(args.days >= 1, "--days must be at least 1");
+    anyhow::ensure!(
+        (1..=36_500).contains(&args.days),
+        "--days must be in [1, 36500]"
+    );
     let mut hosts = match &args.graph {
         Some(path) => graph_hosts(path)?,
         None => BTreeMap::new(),
@@ -56,7 +59,7 @@ pub fn run(args: &CertsArgs) -> Result<()> {
     );
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    let validity = Validity::days_from_now(args.days);
+    let validity = Validity::days_from_now(args.days)?;
     let issuer = authority(&args.out, &validity)?;
     for (name, addresses) in &hosts {
         let (cert, key) = host_certificate(name, addresses, &issuer, &validity)?;
@@ -128,15 +131,22 @@ fn endpoint_address(endpoint: &str) -> Option<String> {
 struct Validity {
     not_before: time::OffsetDateTime,
     not_after: time::OffsetDateTime,
+    /// A new authority outlives the certificates it signs (ten times as long).
+    authority_not_after: time::OffsetDateTime,
 }
 
 impl Validity {
-    fn days_from_now(days: u32) -> Self {
+    fn days_from_now(days: u32) -> Result<Self> {
         let now = time::OffsetDateTime::now_utc();
-        Self {
+        let after = |days: i64| {
+            now.checked_add(time::Duration::days(days))
+                .context("--days reaches past the last date a certificate can carry")
+        };
+        Ok(Self {
             not_before: now - time::Duration::days(1),
-            not_after: now + time::Duration::days(i64::from(days)),
-        }
+            not_after: after(i64::from(days))?,
+            authority_not_after: after(10 * i64::from(days))?,
+        })
     }
 }
 
@@ -144,7 +154,13 @@ impl Validity {
 /// written there.
 fn authority(out: &Path, validity: &Validity) -> Result<Issuer<'static, KeyPair>> {
     let (cert_path, key_path) = (out.join("ca.pem"), out.join("ca.key"));
-    if cert_path.is_file() && key_path.is_file() {
+    anyhow::ensure!(
+        cert_path.is_file() == key_path.is_file(),
+        "{} holds only one of ca.pem and ca.key: put back the other, or use another --out \
+         (a new authority would replace the one every host trusts)",
+        out.display()
+    );
+    if cert_path.is_file() {
         let key = KeyPair::from_pem(&read(&key_path)?)
             .with_context(|| format!("{}: not a private key", key_path.display()))?;
         let issuer = Issuer::from_ca_cert_pem(&read(&cert_path)?, key)
@@ -157,7 +173,7 @@ fn authority(out: &Path, validity: &Validity) -> Result<Issuer<'static, KeyPair>
     params.is_ca = IsCa::Ca(BasicConstraints::Unconstrained);
     params.key_usages = vec![KeyUsagePurpose::KeyCertSign, KeyUsagePurpose::CrlSign];
     params.not_before = validity.not_before;
-    params.not_after = validity.not_after;
+    params.not_after = validity.authority_not_after;
     let key = KeyPair::generate()?;
     let cert = params.self_signed(&key)?;
     write(&cert_path, &cert.pem(), false)?;
@@ -181,10 +197,8 @@ fn host_certificate(
     let mut params = CertificateParams::new(names)
         .with_context(|| format!("host {name}: an address is neither an IP nor a DNS name"))?;
     params.distinguished_name.push(DnType::CommonName, name);
-    params.key_usages = vec![
-        KeyUsagePurpose::DigitalSignature,
-        KeyUsagePurpose::KeyEncipherment,
-    ];
+    // An ECDSA key signs; it does not encipher keys (RFC 5480).
+    params.key_usages = vec![KeyUsagePurpose::DigitalSignature];
     params.extended_key_usages = vec![
         ExtendedKeyUsagePurpose::ServerAuth,
         ExtendedKeyUsagePurpose::ClientAuth,
@@ -213,7 +227,12 @@ fn write(path: &Path, text: &str, private: bool) -> Result<()> {
         .open(path)
         .with_context(|| format!("cannot write {}", path.display()))?;
     file.write_all(text.as_bytes())
-        .with_context(|| format!("cannot write {}", path.display()))
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    // `mode` applies only to a file created here: an existing one keeps its
+    // permissions unless set again.
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(path, std::fs::Permissions::from_mode(mode))
+        .with_context(|| format!("cannot set the permissions of {}", path.display()))
 }
 
 #[cfg(test)]

@@ -67,6 +67,16 @@ pub fn run(args: LaunchArgs) -> Result<()> {
     let nodes: Vec<_> = (nodes.into_iter())
         .filter(|n| args.host.is_none() || n.spec.host == args.host)
         .collect();
+    if args.host.is_some() {
+        refuse_own_links(&nodes)?;
+    }
+    if let (Some(host), true) = (&args.host, nodes.is_empty()) {
+        anyhow::bail!(
+            "host {host} runs no node of {}: for a host that only relays, run `shroud router --graph {} --host {host}`",
+            args.file.display(),
+            args.file.display()
+        );
+    }
     if args.check {
         for node in &nodes {
             let (name, kind) = (&node.spec.name, node.spec.kind);
@@ -115,4 +125,23 @@ pub fn run(args: LaunchArgs) -> Result<()> {
     // Every queued line (the children's last words too) before we exit.
     output::flush(std::time::Duration::from_secs(2));
     outcome
+}
+
+/// A host's nodes link only to their host's router (which checks what other
+/// hosts send): a node of its own endpoints or configuration could be
+/// dialled, or dial, around it.
+fn refuse_own_links(nodes: &[plan::PlannedNode]) -> Result<()> {
+    for node in nodes {
+        let spec = &node.spec;
+        for key in ["listen", "zenoh_config", "zenoh-config"] {
+            if spec.settings.contains_key(key) {
+                return Err(spec
+                    .error(format!(
+                        "settings.{key}: a node of a host links only to its host's router"
+                    ))
+                    .into());
+            }
+        }
+    }
+    Ok(())
 }

@@ -61,6 +61,11 @@ pub async fn run_graph(
         .map(|l| l.to_string())
         .collect();
     let connect = node_endpoints(&file, host.as_deref(), locators);
+    anyhow::ensure!(
+        !connect.is_empty(),
+        "the launcher's router has no loopback endpoint for its nodes (zenoh.listen: {:?})",
+        file.zenoh.listen
+    );
     output::out(format!(
         "[launch] namespace {:?}{}, nodes connect to {}",
         file.namespace,
@@ -80,7 +85,8 @@ pub async fn run_graph(
             z.mode.clone()
         },
         connect,
-        multicast: z.multicast,
+        // A host's nodes find their router by its endpoint, never by scouting.
+        multicast: z.multicast && host.is_none(),
         shm: z.shm,
         log,
     };

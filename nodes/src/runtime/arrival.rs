@@ -22,6 +22,17 @@ pub struct Arrival {
     pub taken_ns: u64,
 }
 
+/// Why a sample is refused before it is read: shroud publishes on exact
+/// keys only, so a put on a wildcard key (`shroud/demo/collision/*`), which
+/// zenoh delivers to every subscriber it intersects, is a forgery or a
+/// mistake, never a message of the stream subscribed to.
+pub(super) fn refused(sample: &zenoh::sample::Sample) -> Option<&'static str> {
+    let key = sample.key_expr().as_str();
+    key.split('/')
+        .any(|chunk| chunk.contains('*'))
+        .then_some("published on a wildcard key, not on the stream's own")
+}
+
 impl Arrival {
     /// Read in zenoh's callback, before anything else, so that the times are
     /// those of the arrival.

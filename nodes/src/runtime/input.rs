@@ -3,7 +3,7 @@
 //! one at a time, with what it receives, drops for backlog and refuses as
 //! malformed counted and logged here.
 
-use super::arrival::Arrival;
+use super::arrival::{refused, Arrival};
 use super::metrics::NodeMetrics;
 use crate::transport::{monotonic_ns, WaitQueue};
 use anyhow::Result;
@@ -47,9 +47,13 @@ impl<M: Message> Input<M> {
         anyhow::ensure!(capacity > 0, "an input queue holds at least one sample");
         let mailbox = Arc::new(WaitQueue::new(DropOldest::new(capacity)));
         let inbox = mailbox.clone();
+        let counted = metrics.clone();
         let subscriber = session
             .declare_subscriber(key.clone())
             .callback(move |sample| {
+                if let Some(reason) = refused(&sample) {
+                    return counted.drop_malformed(sample.key_expr().as_str(), &reason);
+                }
                 inbox.push(|backlog| backlog.push(Arrival::of(&sample)));
             })
             .wait()

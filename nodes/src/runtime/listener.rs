@@ -2,7 +2,7 @@
 //! answer at once (a joint state asks for a verdict) or fold into its state
 //! as they come (a surrogate into the guard's views).
 
-use super::arrival::Arrival;
+use super::arrival::{refused, Arrival};
 use super::metrics::NodeMetrics;
 use anyhow::Result;
 use shroud_msg::{Message, MessageError};
@@ -48,6 +48,9 @@ impl Listener {
         let subscriber = session
             .declare_subscriber(key.clone())
             .callback(move |sample| {
+                if let Some(reason) = refused(&sample) {
+                    return metrics.drop_malformed(sample.key_expr().as_str(), &reason);
+                }
                 let arrival = Arrival::of(&sample);
                 let bytes = arrival.payload.to_bytes();
                 match M::decode(&bytes) {
@@ -73,7 +76,10 @@ impl Listener {
     ) -> Result<Self> {
         let subscriber = session
             .declare_subscriber(key.clone())
-            .callback(move |sample| handler(Arrival::of(&sample)))
+            .callback(move |sample| match refused(&sample) {
+                Some(reason) => tracing::warn!(key = %sample.key_expr(), "dropped: {reason}"),
+                None => handler(Arrival::of(&sample)),
+            })
             .wait()
             .map_err(|e| anyhow::anyhow!("subscribe {key}: {e}"))?;
         Ok(Self {

@@ -156,6 +156,8 @@ impl ZenohArgs {
             ("transport/link/tls/connect_private_key", path(key)),
             ("transport/link/tls/enable_mtls", "true".into()),
             ("transport/link/tls/verify_name_on_connect", "true".into()),
+            // A link does not outlive the certificate it was opened with.
+            ("transport/link/tls/close_link_on_expiration", "true".into()),
         ])
     }
 

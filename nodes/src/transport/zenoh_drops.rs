@@ -12,9 +12,13 @@ const ADMIN_TIMEOUT: Duration = Duration::from_millis(200);
 /// The session's drop counts so far, or None when its admin space did not
 /// answer (they are then left out of the status, not reported as zero).
 pub async fn session_drops(session: &zenoh::Session) -> Option<ZenohDrops> {
-    // Aggregated over transports, links and keys, uncompressed, no comments.
+    // Aggregated over transports, links and keys (closed ones included, so
+    // the counts never go down), uncompressed, no comments. (The admin space
+    // is the runtime's, not the session's, so `Locality::SessionLocal` would
+    // find no one; a graph with access control lets no remote queryable be
+    // declared under `@/`.)
     let key = format!(
-        "@/{}/*/metrics?compression=false;descriptors=false;per_transport=false;per_link=false;per_key=false",
+        "@/{}/*/metrics?compression=false;descriptors=false;per_transport=false;per_link=false;per_key=false;disconnected=true",
         session.zid()
     );
     let replies = session.get(key).timeout(ADMIN_TIMEOUT).await.ok()?;

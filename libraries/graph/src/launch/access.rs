@@ -2,26 +2,29 @@
 //! host, so that a stranger holding another host's certificate cannot
 //! publish a verdict, a joint state or a surrogate it does not own.
 //!
-//! Every stream a node of the file writes, and every node's status, is
-//! denied to every link, then allowed to the links that carry its producer:
-//! the producing host's certificate (by common name, which `shroud certs`
-//! sets to the host's name), the router hosts' (they relay), and, on the
-//! producer's own host, its local processes (plain `tcp` links, which only
-//! loopback carries when the graph runs TLS between hosts). Everything else
-//! (subscriptions, queries, liveliness, streams from outside the file) keeps
-//! zenoh's default, allow.
-//!
-//! How zenoh 1.10 decides (`access_control.rs`, checked by
-//! `tests/multihost.rs`): each subject a link matches gives deny if one of
-//! its rules denies the key, allow if one allows it, and the default if none
-//! names it; the message passes if any subject gives allow. So every subject
-//! names every protected key, allowing its own and denying the rest.
+//! Nothing may be published that a rule does not allow (zenoh's default
+//! here is deny): a host's certificate (its common name, which `shroud
+//! certs` sets to the host's name) may publish exactly the keys its nodes
+//! write (their outputs, a fit node's sector streams, their statuses, and its
+//! launcher's and router's statuses), a router host's certificate anything
+//! (it relays what other routers checked), and the router's own host's
+//! processes anything, over loopback only. A put on a wildcard key (`*`,
+//! `**`) is allowed to no host, since zenoh allows a put only when a rule's
+//! key expression includes the put's. Data goes out to any subscriber;
+//! subscribing, liveliness and replies are free; queries and queryables only
+//! in shroud's key space, so zenoh's admin space answers no remote query and
+//! no remote queryable can pose as it.
+//! A link matching several subjects is allowed what any of them allows
+//! (zenoh 1.10 `access_control.rs`; checked against zenoh in
+//! `tests/multihost.rs`).
 
 use super::error::LaunchError;
-use super::file::LaunchFile;
+use super::file::{LaunchFile, NodeSpec, LAUNCHER_NAME};
 use super::kind::Direction;
+use super::kind::NodeKind;
+use super::sectors::sectors_of;
 use serde::Serialize;
-use shroud_msg::{TopicKind, Topics};
+use shroud_msg::{sector_stream, TopicKind, Topics};
 use std::collections::BTreeMap;
 
 /// zenoh's `access_control` configuration section, as plain data.
@@ -50,6 +53,8 @@ pub struct AclSubject {
     pub cert_common_names: Option<Vec<String>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub link_protocols: Option<Vec<&'static str>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interfaces: Option<Vec<&'static str>>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -61,38 +66,63 @@ pub struct AclPolicy {
 
 /// The messages that publish data.
 const PUBLISH: [&str; 2] = ["put", "delete"];
+/// The messages that declare interest or answer, allowed to every link.
+const DECLARE: [&str; 5] = [
+    "declare_subscriber",
+    "reply",
+    "liveliness_token",
+    "liveliness_query",
+    "declare_liveliness_subscriber",
+];
+/// Both directions of a link.
+const BOTH: [&str; 2] = ["ingress", "egress"];
+/// The loopback interface (Linux), the only one local processes use.
+const LOOPBACK: &str = "lo";
 /// The catch-all subject (no property: every link).
 const EVERYONE: &str = "everyone";
 /// The local processes' subject.
 const LOCAL: &str = "local";
 
 impl LaunchFile {
-    /// The key expressions each host's nodes publish on (their output
-    /// streams, a fit node's sectors included, and their status).
+    /// The keys each host may publish on: its nodes' output streams (a fit
+    /// node's sector streams `<name>.s<i>` for its `sectors`), its nodes'
+    /// statuses, and its launcher's and router's statuses.
     pub fn keys_by_host(&self) -> Result<BTreeMap<String, Vec<String>>, LaunchError> {
         let topics = Topics::new(&self.namespace).map_err(|e| LaunchError::Invalid {
             field: "namespace".into(),
             reason: e.to_string(),
         })?;
-        let key = |kind: TopicKind, name: &str| format!("{}/{kind}/{name}", topics_root(&topics));
+        let key = |kind: TopicKind, name: &str| {
+            (topics.key(kind, name)).map_err(|e| LaunchError::Invalid {
+                field: format!("{kind}/{name}"),
+                reason: e.to_string(),
+            })
+        };
         let mut keys: BTreeMap<String, Vec<String>> = BTreeMap::new();
+        for host in self.hosts.keys() {
+            let own = keys.entry(host.clone()).or_default();
+            for status in [format!("{LAUNCHER_NAME}.{host}"), format!("router.{host}")] {
+                own.push(key(TopicKind::Status, &status)?);
+            }
+        }
         for node in &self.nodes {
             let Some(host) = &node.host else { continue };
             let own = keys.entry(host.clone()).or_default();
-            own.push(key(TopicKind::Status, &node.name));
+            own.push(key(TopicKind::Status, &node.name)?);
             for wire in node.wires()? {
                 if wire.port.direction != Direction::Output {
                     continue;
                 }
-                let kind = TopicKind::parse(wire.stream.topic).expect("a port's topic kind");
-                own.push(key(kind, &wire.stream.name));
-                if kind == TopicKind::Surrogate {
-                    // A fit node with sectors also writes `<name>.s<i>`
-                    // (`shroud_msg::sector_stream`); `$*` is zenoh's
-                    // wildcard within a chunk.
-                    own.push(key(kind, &format!("{}.s$*", wire.stream.name)));
+                let Some(kind) = TopicKind::parse(wire.stream.topic) else {
+                    return Err(node.error(format!("{} is not a topic kind", wire.stream.topic)));
+                };
+                own.push(key(kind, &wire.stream.name)?);
+                for sector in 0..sector_count(node) {
+                    own.push(key(kind, &sector_stream(&wire.stream.name, sector))?);
                 }
             }
+        }
+        for own in keys.values_mut() {
             own.sort();
             own.dedup();
         }
@@ -107,67 +137,74 @@ impl LaunchFile {
         if self.hosts.values().all(|h| h.tls.is_none()) {
             return Ok(None);
         }
-        let keys = self.keys_by_host()?;
-        let every_key: Vec<String> = keys.values().flatten().cloned().collect();
         let mut acl = AccessControl {
             enabled: true,
-            default_permission: "allow",
-            rules: vec![rule("deny-streams", "deny", every_key.clone())],
+            default_permission: "deny",
+            rules: vec![
+                // Data goes out to whoever subscribed.
+                rule_for("deliver", &PUBLISH, &["egress"], &["**"]),
+                // Subscribing, liveliness and replies are free; queries and
+                // queryables only in shroud's key space (not zenoh's admin
+                // space, `@/...`).
+                rule_for("declare", &DECLARE, &BOTH, &["**"]),
+                rule_for(
+                    "query",
+                    &["query", "declare_queryable"],
+                    &BOTH,
+                    &["shroud/**"],
+                ),
+            ],
             subjects: vec![subject(EVERYONE, None, None)],
-            policies: vec![policy("deny-streams", EVERYONE)],
+            policies: vec![policy(&["deliver", "declare", "query"], &[EVERYONE])],
         };
         let routers: Vec<String> = (self.hosts.iter())
             .filter(|(_, h)| h.router)
             .map(|(name, _)| name.clone())
             .collect();
         if !routers.is_empty() {
-            acl.rules.push(rule("relay", "allow", every_key.clone()));
+            acl.rules
+                .push(rule_for("relay", &PUBLISH, &["ingress"], &["**"]));
             acl.subjects.push(subject("routers", Some(routers), None));
-            acl.policies.push(policy("relay", "routers"));
+            acl.policies.push(policy(&["relay"], &["routers"]));
         }
-        for (name, own) in &keys {
-            // A subject a link matches that has no rule for a key gives
-            // the default (allow), and any allowing subject wins: so each
-            // host's subject denies every stream but its own, explicitly.
-            let others: Vec<String> = (every_key.iter())
-                .filter(|k| !own.contains(k))
-                .cloned()
-                .collect();
-            let (allow, deny) = (format!("{name}-streams"), format!("not-{name}-streams"));
-            acl.rules.push(rule(&allow, "allow", own.clone()));
-            let mut rules = vec![allow];
-            if !others.is_empty() {
-                acl.rules.push(rule(&deny, "deny", others));
-                rules.push(deny);
-            }
-            let mut subjects = vec![format!("host-{name}")];
+        // This host's own processes: only over loopback.
+        acl.rules
+            .push(rule_for("local", &PUBLISH, &["ingress"], &["**"]));
+        acl.subjects.push(AclSubject {
+            interfaces: Some(vec![LOOPBACK]),
+            ..subject(LOCAL, None, Some(vec!["tcp"]))
+        });
+        acl.policies.push(policy(&["local"], &[LOCAL]));
+        for (name, own) in self.keys_by_host()? {
+            let (rule_id, subject_id) = (format!("{name}-publishes"), format!("host-{name}"));
+            let own: Vec<&str> = own.iter().map(String::as_str).collect();
+            acl.rules
+                .push(rule_for(&rule_id, &PUBLISH, &["ingress"], &own));
             acl.subjects
-                .push(subject(&subjects[0], Some(vec![name.clone()]), None));
-            if name == host {
-                acl.subjects.push(subject(LOCAL, None, Some(vec!["tcp"])));
-                subjects.push(LOCAL.to_owned());
-            }
-            acl.policies.push(AclPolicy {
-                id: format!("{name}-publishes"),
-                rules,
-                subjects,
-            });
+                .push(subject(&subject_id, Some(vec![name]), None));
+            acl.policies.push(policy(&[&rule_id], &[&subject_id]));
         }
         Ok(Some(acl))
     }
 }
 
-fn topics_root(topics: &Topics) -> String {
-    topics.all().trim_end_matches("/**").to_owned()
+/// How many sector streams a fit node writes besides its whole view
+/// (`sectors` N: N x N).
+fn sector_count(node: &NodeSpec) -> usize {
+    if node.kind != NodeKind::Fit {
+        return 0;
+    }
+    let n = sectors_of(node).unwrap_or(0).clamp(0, 64) as usize;
+    n * n
 }
 
-fn rule(id: &str, permission: &'static str, key_exprs: Vec<String>) -> AclRule {
+fn rule_for(id: &str, messages: &[&'static str], flows: &[&'static str], keys: &[&str]) -> AclRule {
     AclRule {
         id: id.to_owned(),
-        messages: PUBLISH.to_vec(),
-        flows: vec!["ingress"],
-        permission,
-        key_exprs,
+        messages: messages.to_vec(),
+        flows: flows.to_vec(),
+        permission: "allow",
+        key_exprs: keys.iter().map(|k| (*k).to_owned()).collect(),
     }
 }
 
@@ -180,14 +217,15 @@ fn subject(
         id: id.to_owned(),
         cert_common_names,
         link_protocols,
+        interfaces: None,
     }
 }
 
-fn policy(rule: &str, subject: &str) -> AclPolicy {
+fn policy(rules: &[&str], subjects: &[&str]) -> AclPolicy {
     AclPolicy {
-        id: format!("{rule}-for-{subject}"),
-        rules: vec![rule.to_owned()],
-        subjects: vec![subject.to_owned()],
+        id: format!("{}-for-{}", rules.join("-"), subjects.join("-")),
+        rules: rules.iter().map(|r| (*r).to_owned()).collect(),
+        subjects: subjects.iter().map(|s| (*s).to_owned()).collect(),
     }
 }
 
@@ -205,50 +243,46 @@ mod tests {
         LaunchFile::from_toml_str(CELL).unwrap()
     }
 
-    /// The permission zenoh 1.10 gives a put on `key` over a link with
-    /// `common_name` (None: no certificate) and `protocol`: each matched
-    /// subject gives deny if a rule of its denies, allow if one allows, the
-    /// default if none applies; any allow passes (a model of
-    /// `access_control.rs` that tests/multihost.rs checks against zenoh, for
-    /// the rules built here: exact keys and `$*` only at a chunk's end).
-    fn permits(acl: &AccessControl, common_name: Option<&str>, protocol: &str, key: &str) -> bool {
+    /// The permission zenoh 1.10 gives an ingress put on `key` over a link
+    /// with `common_name` (None: no certificate), `protocol` and
+    /// `interface`: allowed when a subject the link matches has an allow
+    /// rule for puts whose key expression includes `key`; the default,
+    /// deny, otherwise (a model of `access_control.rs` for these rules, which
+    /// allow only: exact keys and `**`; tests/multihost.rs checks it against
+    /// zenoh).
+    fn permits(acl: &AccessControl, link: (Option<&str>, &str, &str), key: &str) -> bool {
+        let (common_name, protocol, interface) = link;
         let matches = |s: &AclSubject| {
             let cn = s
                 .cert_common_names
                 .as_ref()
                 .is_none_or(|names| common_name.is_some_and(|cn| names.iter().any(|n| n == cn)));
-            let link = s
+            let by_protocol = s
                 .link_protocols
                 .as_ref()
                 .is_none_or(|p| p.contains(&protocol));
-            cn && link
+            let by_interface = s.interfaces.as_ref().is_none_or(|i| i.contains(&interface));
+            cn && by_protocol && by_interface
         };
-        let includes = |expr: &str| match expr.strip_suffix("$*") {
-            Some(prefix) => key.starts_with(prefix) && !key[prefix.len()..].contains('/'),
-            None => expr == key,
+        let includes = |expr: &str| expr == "**" || expr == key;
+        let allows = |subject: &AclSubject| {
+            (acl.policies
+                .iter()
+                .filter(|p| p.subjects.contains(&subject.id)))
+            .flat_map(|p| p.rules.iter())
+            .filter_map(|id| acl.rules.iter().find(|r| &r.id == id))
+            .filter(|r| r.messages.contains(&"put"))
+            .filter(|r| r.flows.is_empty() || r.flows.contains(&"ingress"))
+            .any(|r| r.key_exprs.iter().any(|e| includes(e)))
         };
-        let default = acl.default_permission == "allow";
-        let verdicts: Vec<bool> = (acl.subjects.iter().filter(|s| matches(s)))
-            .map(|subject| {
-                let rules = acl
-                    .policies
-                    .iter()
-                    .filter(|p| p.subjects.contains(&subject.id));
-                let applicable: Vec<&AclRule> = rules
-                    .flat_map(|p| p.rules.iter())
-                    .filter_map(|id| acl.rules.iter().find(|r| &r.id == id))
-                    .filter(|r| r.key_exprs.iter().any(|e| includes(e)))
-                    .collect();
-                match applicable.is_empty() {
-                    true => default,
-                    false => applicable.iter().all(|r| r.permission == "allow"),
-                }
-            })
-            .collect();
-        match verdicts.is_empty() {
-            true => default,
-            false => verdicts.contains(&true),
-        }
+        assert_eq!(acl.default_permission, "deny");
+        acl.subjects.iter().filter(|s| matches(s)).any(allows)
+    }
+
+    const LOCAL_LINK: (Option<&str>, &str, &str) = (None, "tcp", "lo");
+
+    fn tls(common_name: &str) -> (Option<&str>, &str, &str) {
+        (Some(common_name), "tls", "eth0")
     }
 
     #[test]
@@ -257,56 +291,54 @@ mod tests {
         let verdict = "shroud/demo/collision/demo_arm";
         let joints = "shroud/demo/joints/demo_arm";
         let surrogate = "shroud/demo/surrogate/spheres";
-        // The arm host's own processes publish its verdicts and joints.
-        assert!(permits(&acl, None, "tcp", verdict));
-        assert!(permits(&acl, None, "tcp", joints));
-        // ...but not the sensor host's surrogates.
-        assert!(!permits(&acl, None, "tcp", surrogate));
-        // The sensor host's certificate may send surrogates, sectors too,
-        // never a verdict or joint state.
-        assert!(permits(&acl, Some("sensor"), "tls", surrogate));
+        // The arm host's own processes publish, over loopback only.
+        assert!(permits(&acl, LOCAL_LINK, verdict));
+        assert!(permits(&acl, LOCAL_LINK, joints));
+        assert!(!permits(&acl, (None, "tcp", "eth0"), verdict));
+        // The sensor host's certificate may send its surrogates, never a
+        // verdict, a joint state, another node's status or a wildcard.
+        assert!(permits(&acl, tls("sensor"), surrogate));
         assert!(permits(
             &acl,
-            Some("sensor"),
-            "tls",
-            "shroud/demo/surrogate/spheres.s3"
+            tls("sensor"),
+            "shroud/demo/status/launcher.sensor"
         ));
-        assert!(!permits(&acl, Some("sensor"), "tls", verdict));
-        assert!(!permits(&acl, Some("sensor"), "tls", joints));
-        assert!(!permits(
-            &acl,
-            Some("sensor"),
-            "tls",
-            "shroud/demo/status/guard"
-        ));
+        for key in [
+            verdict,
+            joints,
+            "shroud/demo/status/guard",
+            "shroud/demo/status/router.hub",
+            "shroud/demo/collision/*",
+            "shroud/demo/**",
+            "shroud/demo/cloud/other",
+        ] {
+            assert!(!permits(&acl, tls("sensor"), key), "{key}");
+        }
         // The router relays everything; a stranger's certificate nothing.
-        assert!(permits(&acl, Some("hub"), "tls", verdict));
-        assert!(!permits(&acl, Some("intruder"), "tls", surrogate));
-        // What the file does not produce keeps zenoh's default.
-        assert!(permits(
-            &acl,
-            Some("sensor"),
-            "tls",
-            "shroud/demo/cloud/other"
-        ));
+        assert!(permits(&acl, tls("hub"), verdict));
+        assert!(!permits(&acl, tls("intruder"), surrogate));
+        assert!(!permits(&acl, (None, "tls", "eth0"), surrogate));
     }
 
     #[test]
-    fn the_router_host_lets_no_local_process_publish_a_stream() {
-        let acl = cell().access_control("hub").unwrap().unwrap();
-        assert!(!acl.subjects.iter().any(|s| s.id == LOCAL));
-        assert!(!permits(
-            &acl,
-            None,
-            "tcp",
-            "shroud/demo/collision/demo_arm"
-        ));
-        assert!(permits(
-            &acl,
-            Some("arm"),
-            "tls",
-            "shroud/demo/collision/demo_arm"
-        ));
+    fn a_fit_node_owns_exactly_its_sector_streams() {
+        let text = (CELL.replace("dir = \"0,0,-1\"", "dir = \"0,0,-1\"\nsectors = 2")).replace(
+            "max_clock_offset = 0.001",
+            "max_clock_offset = 0.001\nsectors = 2",
+        );
+        let keys = LaunchFile::from_toml_str(&text)
+            .unwrap()
+            .keys_by_host()
+            .unwrap();
+        let sectors: Vec<&String> = keys["sensor"]
+            .iter()
+            .filter(|k| k.contains("spheres.s"))
+            .collect();
+        assert_eq!(sectors.len(), 4, "{sectors:?}");
+        assert!(keys["sensor"].contains(&"shroud/demo/surrogate/spheres.s3".to_string()));
+        assert!(!cell().keys_by_host().unwrap()["sensor"]
+            .iter()
+            .any(|k| k.contains("spheres.s")));
     }
 
     #[test]

@@ -134,6 +134,16 @@ fn check_host(name: &str, host: &HostSpec, tls_everywhere: bool) -> Result<(), L
         reason,
     };
     check_name("host", name).map_err(|e| invalid("name", e.to_string()))?;
+    // A host's identity is its certificate's common name, and zenoh's
+    // connecting side trusts the public web authorities besides the graph's:
+    // a name that could be a DNS name could be certified by any of them.
+    if name.contains('.') {
+        return Err(invalid(
+            "name",
+            "a host name has no '.' (it must not be a DNS name a public authority certifies)"
+                .into(),
+        ));
+    }
     if tls_everywhere && host.tls.is_none() {
         return Err(invalid(
             "tls",

@@ -12,7 +12,7 @@ use std::fmt::Display;
 /// A node's `sectors` setting: 0 when absent (the node's default), `None`
 /// when it is not an integer (the node's own parser names that value before
 /// anything starts).
-fn sectors_of(node: &NodeSpec) -> Option<i64> {
+pub(super) fn sectors_of(node: &NodeSpec) -> Option<i64> {
     match node.settings.get("sectors") {
         None => Some(0),
         Some(toml::Value::Integer(n)) => Some(*n),

@@ -178,11 +178,13 @@ pub fn joints_in(
                 );
             }
         }
-        input.output.put(&matched.message);
+        // Kept before it is sent: the verdict answering it may come back
+        // before `put` returns.
         input
             .latest
             .lock()
             .unwrap_or_else(|p| p.into_inner())
-            .push(matched.message);
+            .push(matched.message.clone());
+        input.output.put(&matched.message);
     })
 }

@@ -52,17 +52,6 @@ impl VerdictOutput {
     pub fn on_verdict(&self, ctx: &NodeContext, verdict: &CollisionMessage) {
         send(ctx, &self.status, &verdict_status(verdict));
         send(ctx, &self.speed, &speed_scale_of(verdict));
-        let now = monotonic_ns();
-        {
-            let mut last = self
-                .last_shapes_ns
-                .lock()
-                .unwrap_or_else(|p| p.into_inner());
-            if last.is_some_and(|t| now.saturating_sub(t) < self.pace_ns) {
-                return;
-            }
-            *last = Some(now);
-        }
         // The pose the verdict answered: drawn on a later pose, its colours
         // would describe clearances that pose never had.
         let joints = self
@@ -74,6 +63,17 @@ impl VerdictOutput {
         let Some(joints) = joints else {
             return;
         };
+        let now = monotonic_ns();
+        {
+            let mut last = self
+                .last_shapes_ns
+                .lock()
+                .unwrap_or_else(|p| p.into_inner());
+            if last.is_some_and(|t| now.saturating_sub(t) < self.pace_ns) {
+                return;
+            }
+            *last = Some(now);
+        }
         match shroud_viewers::scene::pose_arm(&self.model, &joints) {
             Ok(posed) => {
                 let markers = arm_markers(&posed, Some(verdict), &self.frame_id, joints.stamp_ns);
