@@ -13,6 +13,7 @@ mod file;
 mod hosts;
 mod kind;
 mod load;
+mod placement;
 mod sectors;
 mod wiring;
 
