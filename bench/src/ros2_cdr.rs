@@ -59,8 +59,16 @@ struct SerdeField {
     count: u32,
 }
 
+/// Most points a cloud here may have: its data length must fit the
+/// message's u32 `row_step`.
+const MAX_POINTS: usize = (u32::MAX / POINT_STEP) as usize;
+
 pub fn run(args: &BenchArgs) -> Result<()> {
     let points = args.points;
+    ensure!(
+        (1..=MAX_POINTS).contains(&points),
+        "--points must be in [1, {MAX_POINTS}] for one PointCloud2"
+    );
     let runs = if args.quick { QUICK_RUNS } else { RUNS };
     let cloud = test_cloud(points);
     let payload = cloud.encode();

@@ -35,6 +35,10 @@ pub struct CertsArgs {
     /// Days the certificates are valid.
     #[arg(long, default_value_t = 365)]
     pub days: u32,
+    /// Make a new certificate and key for a host that has them already
+    /// (otherwise they are kept, so naming one more host changes no other).
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// The development authority's common name.
@@ -62,9 +66,27 @@ pub fn run(args: &CertsArgs) -> Result<()> {
     let validity = Validity::days_from_now(args.days)?;
     let issuer = authority(&args.out, &validity)?;
     for (name, addresses) in &hosts {
+        let (cert_path, key_path) = (
+            args.out.join(format!("{name}.pem")),
+            args.out.join(format!("{name}.key")),
+        );
+        if !args.force && cert_path.is_file() && key_path.is_file() {
+            println!(
+                "{name}: {} kept (--force makes new ones)",
+                cert_path.display()
+            );
+            continue;
+        }
+        if addresses.is_empty() {
+            eprintln!(
+                "warning: host {name} has no address in its certificate: hosts that connect to it \
+                 will fail to verify its name (give --host {name}=ADDRESS, or a listen endpoint \
+                 with its address in the graph file)"
+            );
+        }
         let (cert, key) = host_certificate(name, addresses, &issuer, &validity)?;
-        write(&args.out.join(format!("{name}.pem")), &cert, false)?;
-        write(&args.out.join(format!("{name}.key")), &key, true)?;
+        write(&cert_path, &cert, false)?;
+        write(&key_path, &key, true)?;
         println!(
             "{name}: {}/{name}.pem, {name}.key (CN {name}; addresses: {})",
             args.out.display(),
@@ -272,6 +294,7 @@ mod tests {
             hosts: vec![host.into()],
             graph: None,
             days: 30,
+            force: false,
         };
         run(&args("hub=127.0.0.1")).unwrap();
         let ca = std::fs::read_to_string(dir.path().join("ca.pem")).unwrap();

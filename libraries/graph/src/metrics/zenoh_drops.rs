@@ -45,12 +45,14 @@ impl ZenohDrops {
     }
 }
 
-/// The value of label `name` in `family{a="x",name="y"}`.
+/// The value of label `name` in `family{a="x",name="y"}` (label values
+/// here are names and numbers: no escaped quotes or commas).
 fn label<'a>(series: &'a str, name: &str) -> Option<&'a str> {
     let labels = series.split_once('{')?.1.strip_suffix('}')?;
-    let start = labels.find(&format!("{name}=\""))? + name.len() + 2;
-    let rest = &labels[start..];
-    Some(&rest[..rest.find('"')?])
+    labels.split(',').find_map(|pair| {
+        let (key, value) = pair.split_once('=')?;
+        (key.trim() == name).then(|| value.trim().trim_matches('"'))
+    })
 }
 
 #[cfg(test)]
@@ -66,6 +68,7 @@ rx_network_message_dropped_payload_bytes_sum{local_id="a",local_whatami="router"
 tx_network_message_dropped_payload_bytes_count{local_id="a",local_whatami="router",reason="access-control",space="user"} 2
 tx_network_message_dropped_payload_bytes_count{local_id="a",local_whatami="router",reason="congestion",priority="data"} 5
 tx_network_message_dropped_payload_bytes_count{local_id="a",reason="no-link"} 1
+tx_network_message_dropped_payload_bytes_count{local_id="a",xreason="congestion",reason="low-pass"} 1
 tx_network_message_dropped_payload_bytes_count{local_id="a",reason="congestion"} not-a-number
 # EOF"#;
         let drops = ZenohDrops::from_openmetrics(text);
@@ -74,7 +77,7 @@ tx_network_message_dropped_payload_bytes_count{local_id="a",reason="congestion"}
             ZenohDrops {
                 access_control: 9,
                 congestion: 5,
-                other: 1
+                other: 2
             }
         );
         assert_eq!(ZenohDrops::from_openmetrics(""), ZenohDrops::default());
