@@ -77,13 +77,6 @@ pub fn run(args: &CertsArgs) -> Result<()> {
             );
             continue;
         }
-        if addresses.is_empty() {
-            eprintln!(
-                "warning: host {name} has no address in its certificate: hosts that connect to it \
-                 will fail to verify its name (give --host {name}=ADDRESS, or a listen endpoint \
-                 with its address in the graph file)"
-            );
-        }
         let (cert, key) = host_certificate(name, addresses, &issuer, &validity)?;
         write(&cert_path, &cert, false)?;
         write(&key_path, &key, true)?;
