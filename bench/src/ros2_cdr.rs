@@ -214,12 +214,7 @@ fn test_cloud(points: usize) -> PointCloud2<'static> {
             data.extend_from_slice(&value.to_le_bytes());
         }
     }
-    let field = |name: &str, offset| PointField {
-        name: name.into(),
-        offset,
-        datatype: PointField::FLOAT32,
-        count: 1,
-    };
+    let field = |name: &str, offset| PointField::scalar(name, offset, PointField::FLOAT32);
     PointCloud2 {
         header: Header {
             stamp: Time {

@@ -18,6 +18,7 @@ pub fn seeds() -> Vec<Vec<u8>> {
     [
         include_str!("../../../launch/blend.toml"),
         include_str!("../../../launch/demo.toml"),
+        include_str!("../../../launch/hosts.toml"),
         include_str!("../../../launch/lidar.toml"),
         include_str!("../../../launch/multiview.toml"),
         include_str!("../../../launch/radar.toml"),

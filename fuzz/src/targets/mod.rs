@@ -71,4 +71,5 @@ targets! {
     ros2_messages,
     ros2_liveliness_token,
     ros2_attachment,
+    zenoh_metrics,
 }

@@ -21,12 +21,7 @@ fn xyz(datatype: u8, size: u32) -> Vec<PointField> {
     ["x", "y", "z"]
         .into_iter()
         .zip(0..)
-        .map(|(name, i)| PointField {
-            name: name.into(),
-            offset: i * size,
-            datatype,
-            count: 1,
-        })
+        .map(|(name, i)| PointField::scalar(name, i * size, datatype))
         .collect()
 }
 

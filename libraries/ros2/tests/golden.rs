@@ -38,20 +38,11 @@ fn header(frame_id: &str, sec: i32, nanosec: u32) -> Header {
     }
 }
 
-fn field(name: &str, offset: u32, datatype: u8) -> PointField {
-    PointField {
-        name: name.into(),
-        offset,
-        datatype,
-        count: 1,
-    }
-}
-
 fn xyz(datatype: u8, size: u32) -> Vec<PointField> {
     ["x", "y", "z"]
         .iter()
         .zip(0..)
-        .map(|(name, i)| field(name, i * size, datatype))
+        .map(|(name, i)| PointField::scalar(name, i * size, datatype))
         .collect()
 }
 
@@ -174,7 +165,7 @@ fn point_clouds() {
     );
 
     let mut xyzi = xyz(PointField::FLOAT32, 4);
-    xyzi.push(field("intensity", 16, PointField::FLOAT32));
+    xyzi.push(PointField::scalar("intensity", 16, PointField::FLOAT32));
     let padded = f32_le(&[
         1.0, 2.0, 3.0, 0.0, 9.5, 0.0, 0.0, 0.0, 4.0, 5.0, 6.0, 0.0, 7.25, 0.0, 0.0, 0.0,
     ]);
@@ -264,7 +255,10 @@ fn standard_messages() {
     check("duration", Duration { sec: 7, nanosec: 1 });
     check("header", header("base_link", 1_700_000_000, 123));
     check("color_rgba", color(0.1, 0.2, 0.3, 0.4));
-    check("point_field", field("rgb", 12, PointField::UINT32));
+    check(
+        "point_field",
+        PointField::scalar("rgb", 12, PointField::UINT32),
+    );
     check(
         "compressed_image",
         compressed_image("jpeg", vec![255, 216, 255]),

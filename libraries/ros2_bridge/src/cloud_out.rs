@@ -34,12 +34,7 @@ pub fn point_cloud2_of(
     let fields = names
         .iter()
         .zip(0u32..)
-        .map(|(name, k)| PointField {
-            name: (*name).to_owned(),
-            offset: 4 * k,
-            datatype: PointField::FLOAT32,
-            count: 1,
-        })
+        .map(|(name, k)| PointField::scalar(name, 4 * k, PointField::FLOAT32))
         .collect();
     let too_many = || MessageError::Invalid {
         field: "points",

@@ -81,14 +81,8 @@ impl Roster {
             names::DROPPED_MALFORMED.name.into(),
             self.dropped_malformed.load(Ordering::Relaxed),
         );
-        if let Some(drops) = drops {
-            let counters = [
-                (names::ZENOH_DROPPED_ACCESS_CONTROL, drops.access_control),
-                (names::ZENOH_DROPPED_CONGESTION, drops.congestion),
-            ];
-            for (counter, value) in counters {
-                msg.counters.insert(counter.name.into(), value);
-            }
+        for (counter, value) in drops.iter().flat_map(ZenohDrops::counters) {
+            msg.counters.insert(counter.name.into(), value);
         }
         for (name, child) in self.lock().iter() {
             msg.counters.insert(format!("starts.{name}"), child.starts);

@@ -4,7 +4,6 @@
 
 use super::context::NodeContext;
 use crate::transport::{session_drops, unix_ns};
-use shroud_graph::metrics::names::{ZENOH_DROPPED_ACCESS_CONTROL, ZENOH_DROPPED_CONGESTION};
 use shroud_msg::{NodeStatusMessage, TopicKind};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -23,10 +22,9 @@ pub(super) async fn publish_status(
     loop {
         tick.tick().await;
         if let Some(drops) = session_drops(&ctx.session).await {
-            ctx.metrics
-                .set_counter(ZENOH_DROPPED_ACCESS_CONTROL, drops.access_control);
-            ctx.metrics
-                .set_counter(ZENOH_DROPPED_CONGESTION, drops.congestion);
+            for (counter, value) in drops.counters() {
+                ctx.metrics.set_counter(counter, value);
+            }
         }
         writer.publish(&ctx);
     }

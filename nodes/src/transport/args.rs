@@ -210,29 +210,23 @@ mod tests {
             path.display().to_string()
         };
         let (ca, cert, key) = (file("ca.pem"), file("h.pem"), file("h.key"));
-        let tls = [
-            "--tls-root-ca",
-            &ca,
-            "--tls-certificate",
-            &cert,
-            "--tls-private-key",
-            &key,
-        ];
-        let w = Wrap::parse_from(["x"].into_iter().chain(tls));
-        let settings = w.z.tls_settings().unwrap();
+        let with_key = |key: &str| {
+            let tls = [
+                "--tls-root-ca",
+                &ca,
+                "--tls-certificate",
+                &cert,
+                "--tls-private-key",
+                key,
+            ];
+            Wrap::parse_from(["x"].into_iter().chain(tls))
+        };
+        let settings = with_key(&key).z.tls_settings().unwrap();
         let keys: Vec<&str> = settings.iter().map(|(k, _)| *k).collect();
         assert!(keys.contains(&"transport/link/tls/connect_certificate"));
         assert!(settings.contains(&("transport/link/tls/enable_mtls", "true".into())));
         let missing = dir.path().join("none.key").display().to_string();
-        let tls = [
-            "--tls-root-ca",
-            &ca,
-            "--tls-certificate",
-            &cert,
-            "--tls-private-key",
-            &missing,
-        ];
-        let w = Wrap::parse_from(["x"].into_iter().chain(tls));
+        let w = with_key(&missing);
         let error = w.z.config().unwrap_err().to_string();
         assert!(
             error.contains("--tls-private-key") && error.contains("no such file"),

@@ -3,6 +3,8 @@
 //! `stats`): messages refused by access control, and messages a congested
 //! link dropped, which zenoh's `put` does not report to its caller.
 
+use super::names::{self, Counter};
+
 /// Messages zenoh dropped in one session, by reason, both directions.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct ZenohDrops {
@@ -19,6 +21,14 @@ pub struct ZenohDrops {
 const DROPPED_COUNT: &str = "_network_message_dropped_payload_bytes_count";
 
 impl ZenohDrops {
+    /// The counts a status message carries, by counter.
+    pub fn counters(&self) -> [(Counter, u64); 2] {
+        [
+            (names::ZENOH_DROPPED_ACCESS_CONTROL, self.access_control),
+            (names::ZENOH_DROPPED_CONGESTION, self.congestion),
+        ]
+    }
+
     /// Sums the dropped-message counts of an OpenMetrics text by reason;
     /// lines of other families, comments and malformed lines are skipped.
     pub fn from_openmetrics(text: &str) -> Self {
@@ -81,5 +91,21 @@ tx_network_message_dropped_payload_bytes_count{local_id="a",reason="congestion"}
             }
         );
         assert_eq!(ZenohDrops::from_openmetrics(""), ZenohDrops::default());
+    }
+
+    proptest::proptest! {
+        /// Any text reads without a panic, and only the dropped-message
+        /// series count: other lines around them change nothing.
+        #[test]
+        fn only_dropped_series_count(noise in "\\PC{0,200}", count in 0u32..1000) {
+            let series = format!(
+                "tx_network_message_dropped_payload_bytes_count{{reason=\"congestion\"}} {count}"
+            );
+            let noise = noise.replace('\n', " ").replace("dropped_payload", "x");
+            let text = format!("{noise}\n{series}\n{noise}");
+            let drops = ZenohDrops::from_openmetrics(&text);
+            proptest::prop_assert_eq!(drops.congestion, u64::from(count));
+            proptest::prop_assert_eq!(drops.access_control + drops.other, 0);
+        }
     }
 }

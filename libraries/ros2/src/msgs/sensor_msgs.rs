@@ -30,6 +30,17 @@ impl PointField {
     pub const UINT32: u8 = 6;
     pub const FLOAT32: u8 = 7;
     pub const FLOAT64: u8 = 8;
+
+    /// One value of `datatype` named `name` at byte `offset` of a point (the
+    /// shape of every x, y, z and intensity channel).
+    pub fn scalar(name: &str, offset: u32, datatype: u8) -> Self {
+        Self {
+            name: name.to_owned(),
+            offset,
+            datatype,
+            count: 1,
+        }
+    }
 }
 
 ros_message! {

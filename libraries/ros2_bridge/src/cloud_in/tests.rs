@@ -10,15 +10,6 @@ const STAMP: Time = Time {
     nanosec: 250,
 };
 
-fn field(name: &str, offset: u32, datatype: u8) -> PointField {
-    PointField {
-        name: name.into(),
-        offset,
-        datatype,
-        count: 1,
-    }
-}
-
 /// A cloud of `rows x columns` points, each `point_step` bytes from `write`.
 fn cloud(
     fields: Vec<PointField>,
@@ -51,9 +42,9 @@ fn cloud(
 
 fn xyz32() -> Vec<PointField> {
     vec![
-        field("x", 0, PointField::FLOAT32),
-        field("y", 4, PointField::FLOAT32),
-        field("z", 8, PointField::FLOAT32),
+        PointField::scalar("x", 0, PointField::FLOAT32),
+        PointField::scalar("y", 4, PointField::FLOAT32),
+        PointField::scalar("z", 8, PointField::FLOAT32),
     ]
 }
 
@@ -89,9 +80,9 @@ fn float32_float64_and_big_endian_layouts_read_the_same_points() {
             .for_each(|v| d.extend((*v as f32).to_be_bytes()))
     });
     let f64s = vec![
-        field("x", 0, PointField::FLOAT64),
-        field("y", 8, PointField::FLOAT64),
-        field("z", 16, PointField::FLOAT64),
+        PointField::scalar("x", 0, PointField::FLOAT64),
+        PointField::scalar("y", 8, PointField::FLOAT64),
+        PointField::scalar("z", 16, PointField::FLOAT64),
     ];
     let le64 = cloud(f64s, 24, (1, 5), false, |i, d| {
         sample(i).iter().for_each(|v| d.extend(v.to_le_bytes()))
@@ -105,7 +96,7 @@ fn float32_float64_and_big_endian_layouts_read_the_same_points() {
 fn padded_points_with_intensity_keep_their_intensity() {
     // PCL's PointXYZI: x, y, z, 4 bytes of padding, intensity, 12 more.
     let mut fields = xyz32();
-    fields.push(field("intensity", 16, PointField::FLOAT32));
+    fields.push(PointField::scalar("intensity", 16, PointField::FLOAT32));
     let c = cloud(fields, 32, (1, 4), false, |i, d| {
         sample(i)
             .iter()
