@@ -30,6 +30,7 @@
 
 mod common;
 
+use common::impair::Impairment;
 use common::netns::{self, Lan};
 use common::status_board::StatusBoard;
 use common::{inbox, joint_spread_if_any, unix_ns, Proc};
@@ -53,12 +54,19 @@ const HOSTS: [&str; 6] = ["hub", "sensor", "fit", "arm", "rogue1", "rogue2"];
 /// A forged joint state's sequence is the real one's plus this.
 const FORGED_SEQUENCE: u64 = 1_000_000_000;
 
-/// Two spheres of 4000 points, light enough for a debug build at 10 Hz: one
-/// beside the arm, one sweeping through it every 5 s (the guard stops the
-/// arm then, for a second or so).
-const SCENE: &str = r#"{"kind": "moving-spheres", "points": 4000, "radii": [0.5, 0.45],
+/// Two spheres (4000 points in all for the faults, light enough for a debug
+/// build at 10 Hz): one beside the arm, one sweeping through it every 5 s
+/// (the guard stops the arm then, for a second or so).
+const SCENE: &str = r#"{"kind": "moving-spheres", "points": {points}, "radii": [0.5, 0.45],
  "paths": [{"centre": [-0.6, -2.6, 0.3], "amplitude": [0.2, 0.1, 0.1], "angular_speed": [0.5, 0.5, 1.0], "phase": [0.0, 0.0, 0.0]},
            {"centre": [0.0, 0.0, 1.0], "amplitude": [2.5, 0.2, 0.1], "angular_speed": [0.6, 0.5, 1.0], "phase": [1.5707963267948966, 0.0, 0.0]}],
+ "seed": 7}"#;
+
+/// Two spheres beside the arm, which never reach it: the link conditions'
+/// scene, where every halt is the link's doing.
+const STILL: &str = r#"{"kind": "moving-spheres", "points": {points}, "radii": [0.5, 0.45],
+ "paths": [{"centre": [-0.6, -2.6, 0.3], "amplitude": [0.2, 0.1, 0.1], "angular_speed": [0.5, 0.5, 1.0], "phase": [0.0, 0.0, 0.0]},
+           {"centre": [0.6, 2.6, 0.3], "amplitude": [0.2, 0.1, 0.1], "angular_speed": [0.6, 0.5, 1.0], "phase": [1.0, 0.0, 0.0]}],
  "seed": 7}"#;
 
 /// `launch/hosts.toml` with a fit host between the sensor and the arm, the
@@ -165,6 +173,14 @@ impl Drop for Procs {
 #[derive(Default)]
 struct Heard {
     verdicts: Vec<(Instant, CollisionMessage)>,
+    /// Each verdict's time from the joint state it answers (stamped on the
+    /// arm host) to the observer, in ms: the hosts share the kernel's clock.
+    loops_ms: Vec<(Instant, f64)>,
+    /// Each surrogate's time from its cloud's stamp (on the sensor host) to
+    /// the observer, in ms.
+    surrogate_ms: Vec<(Instant, f64)>,
+    /// The sequence of every joint state heard.
+    joints: Vec<(Instant, u64)>,
     /// Samples with a rogue's attachment, by `<attachment> on <key>`.
     forged: BTreeMap<String, u64>,
     /// Verdicts that answer a forged joint state.
@@ -175,47 +191,76 @@ fn lock(heard: &Mutex<Heard>) -> MutexGuard<'_, Heard> {
     heard.lock().unwrap_or_else(|p| p.into_inner())
 }
 
-/// Subscribes the observer to everything of the graph's namespace.
-fn listen(observer: &zenoh::Session) -> (Arc<Mutex<Heard>>, zenoh::pubsub::Subscriber<()>) {
+/// Subscribes the observer to each of `keys` (with the graph's namespace).
+fn listen(
+    observer: &zenoh::Session,
+    keys: &[&str],
+) -> (Arc<Mutex<Heard>>, Vec<zenoh::pubsub::Subscriber<()>>) {
     let heard = Arc::new(Mutex::new(Heard::default()));
-    let sink = heard.clone();
-    let collision = format!("shroud/{NS}/collision/demo_arm");
-    let subscriber = observer
-        .declare_subscriber(format!("shroud/{NS}/**"))
-        .callback(move |sample| {
-            let key = sample.key_expr().to_string();
-            let mut heard = lock(&sink);
-            if let Some(attachment) = sample.attachment() {
-                let who = String::from_utf8_lossy(&attachment.to_bytes()).into_owned();
-                *heard.forged.entry(format!("{who} on {key}")).or_default() += 1;
-            }
-            if key != collision {
-                return;
-            }
-            match CollisionMessage::from_bytes(&sample.payload().to_bytes()) {
-                Ok(v) => {
-                    if v.joints_sequence >= FORGED_SEQUENCE && v.joints_sequence != u64::MAX {
-                        heard.judged_forged_joints += 1;
-                    }
-                    if v.reason == "forged" && sample.attachment().is_none() {
-                        *heard
-                            .forged
-                            .entry(format!("unmarked on {key}"))
-                            .or_default() += 1;
-                    }
-                    heard.verdicts.push((Instant::now(), v));
-                }
-                Err(e) => {
-                    *heard
-                        .forged
-                        .entry(format!("undecodable on {key}: {e}"))
-                        .or_default() += 1
-                }
-            }
+    let subscribers = (keys.iter())
+        .map(|key| {
+            let sink = heard.clone();
+            observer
+                .declare_subscriber(format!("shroud/{NS}/{key}"))
+                .callback(move |sample| hear(&mut lock(&sink), &sample))
+                .wait()
+                .expect("the observer subscribes")
         })
-        .wait()
-        .expect("the observer subscribes");
-    (heard, subscriber)
+        .collect();
+    (heard, subscribers)
+}
+
+/// Notes what `sample` tells: a forgery, a verdict, a surrogate, a joint
+/// state.
+fn hear(heard: &mut Heard, sample: &zenoh::sample::Sample) {
+    let key = sample.key_expr().to_string();
+    let now = (Instant::now(), unix_ns());
+    let since = |stamp_ns: u64| now.1.saturating_sub(stamp_ns) as f64 * 1e-6;
+    if let Some(attachment) = sample.attachment() {
+        let who = String::from_utf8_lossy(&attachment.to_bytes()).into_owned();
+        *heard.forged.entry(format!("{who} on {key}")).or_default() += 1;
+    }
+    let bytes = sample.payload().to_bytes();
+    if key == format!("shroud/{NS}/surrogate/spheres") {
+        if let Ok((surrogate, _)) = SurrogateMessage::from_bytes(&bytes) {
+            let ms = since(surrogate.source_stamp_ns);
+            heard.surrogate_ms.push((now.0, ms));
+        }
+        return;
+    }
+    if key == format!("shroud/{NS}/joints/demo_arm") {
+        if let Ok(joints) = shroud_msg::JointStateMessage::from_bytes(&bytes) {
+            heard.joints.push((now.0, joints.sequence));
+        }
+        return;
+    }
+    if key != format!("shroud/{NS}/collision/demo_arm") {
+        return;
+    }
+    match CollisionMessage::from_bytes(&bytes) {
+        Ok(v) => {
+            if v.joints_sequence >= FORGED_SEQUENCE && v.joints_sequence != u64::MAX {
+                heard.judged_forged_joints += 1;
+            }
+            if v.reason == "forged" && sample.attachment().is_none() {
+                *heard
+                    .forged
+                    .entry(format!("unmarked on {key}"))
+                    .or_default() += 1;
+            }
+            // A verdict for no joint state (the guard's start) has none.
+            if v.joints_sequence != u64::MAX {
+                heard.loops_ms.push((now.0, since(v.joints_stamp_ns)));
+            }
+            heard.verdicts.push((now.0, v));
+        }
+        Err(e) => {
+            *heard
+                .forged
+                .entry(format!("undecodable on {key}: {e}"))
+                .or_default() += 1
+        }
+    }
 }
 
 /// The first verdict heard at or after `since` that satisfies `wanted`.
@@ -390,7 +435,7 @@ fn clear_template() -> String {
 /// the files, the namespaces.
 struct Demo {
     procs: Procs,
-    _everything: zenoh::pubsub::Subscriber<()>,
+    _watching: Vec<zenoh::pubsub::Subscriber<()>>,
     board: StatusBoard,
     heard: Arc<Mutex<Heard>>,
     observer: zenoh::Session,
@@ -399,18 +444,47 @@ struct Demo {
     arm_router: String,
     dir: tempfile::TempDir,
     lan: Lan,
+    /// This test binary's tests run in parallel threads of one process, and
+    /// a [`Lan`]'s names and addresses come from the process: one demo at a
+    /// time (held until the namespaces are gone).
+    _turn: MutexGuard<'static, ()>,
 }
+
+/// Whose turn it is to have the LAN.
+static LAN_TURN: Mutex<()> = Mutex::new(());
+
+/// How a run of the demo is set up.
+struct Setup {
+    /// The scanner's scene, with `{points}` for its number of points.
+    scene: &'static str,
+    /// Points of a cloud, in all.
+    points: usize,
+    /// Hosts whose link passes through a relay that can delay and drop.
+    relayed: &'static [&'static str],
+    /// What the observer subscribes to, under the graph's namespace.
+    watch: &'static [&'static str],
+}
+
+/// The faults and rogues: light clouds, plain links, the observer hears
+/// everything (forgeries on any key).
+const FAULTS: Setup = Setup {
+    scene: SCENE,
+    points: 4000,
+    relayed: &[],
+    watch: &["**"],
+};
 
 impl Demo {
     /// Certificates, the graph, the router host and each host's launcher in
     /// their namespaces, and the observer; `None` (the test skipped) without
     /// root or `ip netns`.
-    fn start() -> Option<Demo> {
+    fn start(setup: &Setup) -> Option<Demo> {
         if let Some(reason) = netns::unusable() {
             netns::skip(&reason);
             return None;
         }
-        let lan = match Lan::new(&HOSTS) {
+        let turn = LAN_TURN.lock().unwrap_or_else(|p| p.into_inner());
+        let lan = match Lan::with_relayed(&HOSTS, setup.relayed) {
             Ok(lan) => lan,
             Err(e) => {
                 netns::skip(&format!("cannot make network namespaces: {e}"));
@@ -420,7 +494,8 @@ impl Demo {
         let dir = tempfile::tempdir().unwrap();
         let d = dir.path();
         let certs = d.display().to_string();
-        std::fs::write(d.join("scene.json"), SCENE).unwrap();
+        let scene = (setup.scene).replace("{points}", &setup.points.to_string());
+        std::fs::write(d.join("scene.json"), scene).unwrap();
         let graph = d.join("hosts.toml").display().to_string();
         let text = GRAPH
             .replace("{ns}", NS)
@@ -459,11 +534,11 @@ impl Demo {
         let arm_router = format!("tls/{}:{PORT}", lan.addr("arm"));
         let observer = netns::lan_client(d, &hub, "observer")
             .expect("the observer reaches the router host from the root namespace");
-        let (heard, everything) = listen(&observer);
+        let (heard, watching) = listen(&observer, setup.watch);
         let board = StatusBoard::new(&observer, NS);
         Some(Demo {
             procs,
-            _everything: everything,
+            _watching: watching,
             board,
             heard,
             observer,
@@ -471,6 +546,7 @@ impl Demo {
             arm_router,
             dir,
             lan,
+            _turn: turn,
         })
     }
 
@@ -526,7 +602,7 @@ fn the_demo_across_network_namespaces_halts_on_lost_links_and_refuses_rogues() {
     let started = Instant::now();
     let python =
         common::python::python_with("zenoh-rogue", &["eclipse-zenoh==1.10.2", "msgpack==1.1.2"]);
-    let Some(mut demo) = Demo::start() else {
+    let Some(mut demo) = Demo::start(&FAULTS) else {
         return;
     };
 
@@ -892,7 +968,7 @@ fn the_demo_across_network_namespaces_halts_on_lost_links_and_refuses_rogues() {
             outage past the lease, the router host stops routing to it for good ('Could not find \
             corresponding link in routers network'), and the arm stays halted; --ignored runs it"]
 fn the_arm_recovers_from_link_outages_past_the_lease() {
-    let Some(demo) = Demo::start() else {
+    let Some(demo) = Demo::start(&FAULTS) else {
         return;
     };
     let router = demo.procs.get("router");
@@ -922,4 +998,340 @@ fn the_arm_recovers_from_link_outages_past_the_lease() {
             errors.len()
         );
     }
+}
+
+/// The link conditions: the sensor host's clouds cross the fit host's link
+/// with the arm's joint states (in) and the guard's verdicts (out). The
+/// observer hears verdicts, surrogates and joint states only (a cloud to it
+/// would load the router host twice).
+fn conditions_setup(points: usize) -> Setup {
+    Setup {
+        scene: STILL,
+        points,
+        relayed: &["fit"],
+        watch: &["collision/demo_arm", "surrogate/spheres", "joints/demo_arm"],
+    }
+}
+
+/// A condition of the fit host's link: delay and loss each way, a bandwidth
+/// limit each way.
+#[derive(Clone, Copy)]
+struct Condition {
+    name: &'static str,
+    impairment: Impairment,
+    mbit_s: Option<f64>,
+}
+
+const fn condition(name: &'static str, delay_ms: u64, loss: f64, mbit_s: Option<f64>) -> Condition {
+    Condition {
+        name,
+        impairment: Impairment {
+            delay: Duration::from_millis(delay_ms),
+            loss,
+        },
+        mbit_s,
+    }
+}
+
+/// The nodes whose counters a condition reads: the graph's, and the zenoh
+/// routers of each host (where a congested link drops).
+const COUNTED: [&str; 8] = [
+    "scanner",
+    "fit",
+    "guard",
+    "arm",
+    "router.hub",
+    "launcher.sensor",
+    "launcher.fit",
+    "launcher.arm",
+];
+
+/// What a condition did over a measurement window.
+#[derive(Debug)]
+struct Measured {
+    /// Joint state to verdict at the observer (the fit host's link crossed
+    /// both ways), median and 99th percentile, ms.
+    loop_ms: Option<(f64, f64)>,
+    /// Joint states heard in the window that a verdict heard by its end
+    /// answers (the last second's are not asked about).
+    answered: (usize, usize),
+    /// Cloud stamp to surrogate at the observer, median and 99th percentile.
+    surrogate_ms: Option<(f64, f64)>,
+    /// Counter changes over the window, by `node/counter`.
+    counted: BTreeMap<String, i64>,
+    /// Verdicts heard, by kind.
+    verdicts: BTreeMap<String, usize>,
+    /// Seconds the arm was halted, from its status (`halted_s`) at the
+    /// window's start and end, over the window: statuses up to a second off
+    /// the window's ends may take it a little over 100 % (NaN without them).
+    halted: f64,
+    /// Frames the relay dropped for the loss probability.
+    frames_lost: u64,
+    /// Nodes whose status did not reach the observer within 5 s, at the
+    /// window's start or end (their counters are left out).
+    silent: Vec<&'static str>,
+}
+
+impl Measured {
+    fn count(&self, node: &str, counter: &str) -> i64 {
+        self.counted
+            .get(&format!("{node}/{counter}"))
+            .copied()
+            .unwrap_or(0)
+    }
+
+    /// zenoh's congestion drops, every process together.
+    fn congestion_drops(&self) -> i64 {
+        (COUNTED.iter())
+            .map(|node| self.count(node, "zenoh_dropped_congestion"))
+            .sum()
+    }
+
+    fn row(&self, condition: &Condition) -> String {
+        let ms =
+            |p: Option<(f64, f64)>| p.map_or("none".into(), |(a, b)| format!("{a:.1} / {b:.1}"));
+        let mut verdicts: Vec<String> = (self.verdicts.iter())
+            .map(|(kind, n)| format!("{kind} {n}"))
+            .collect();
+        if !self.silent.is_empty() {
+            verdicts.push(format!("(no status from {})", self.silent.join(", ")));
+        }
+        format!(
+            "| {} | {} | {:.1} % | {} | {} / {} | {} | {} | {} | {:.0} % |",
+            condition.name,
+            ms(self.loop_ms),
+            100.0 * self.answered.0 as f64 / self.answered.1.max(1) as f64,
+            ms(self.surrogate_ms),
+            self.count("fit", "received"),
+            self.count("scanner", "published"),
+            self.count("fit", "sequence_gaps"),
+            self.congestion_drops(),
+            verdicts.join(", "),
+            100.0 * self.halted,
+        )
+    }
+}
+
+/// The median and 99th percentile of `values` (nearest rank; none when
+/// empty).
+fn percentiles(mut values: Vec<f64>) -> Option<(f64, f64)> {
+    values.sort_by(f64::total_cmp);
+    let at = |q: usize| values[(values.len() * q).div_ceil(100).max(1) - 1];
+    (!values.is_empty()).then(|| (at(50), at(99)))
+}
+
+impl Demo {
+    /// Every counted node's status published after `after_ns`.
+    fn statuses(&self, after_ns: u64) -> BTreeMap<&'static str, shroud_msg::NodeStatusMessage> {
+        (COUNTED.iter())
+            .map(|node| (*node, self.board.published_after(node, after_ns)))
+            .collect()
+    }
+
+    /// [`Demo::statuses`], of the nodes whose status comes within 5 s.
+    fn statuses_heard(
+        &self,
+        after_ns: u64,
+    ) -> BTreeMap<&'static str, shroud_msg::NodeStatusMessage> {
+        let within = Duration::from_secs(5);
+        (COUNTED.iter())
+            .filter_map(|node| {
+                let status = (self.board).try_wait_for(node, within, |s| s.stamp_ns >= after_ns);
+                status.map(|s| (*node, s))
+            })
+            .collect()
+    }
+
+    /// Puts the fit host's link in `condition`, lets it settle, and measures
+    /// what it does over `window`.
+    fn measure(&self, condition: &Condition, settle: Duration, window: Duration) -> Measured {
+        self.lan.impair("fit", condition.impairment);
+        self.lan.limit_rate("fit", condition.mbit_s);
+        std::thread::sleep(settle);
+        let (start, start_ns) = (Instant::now(), unix_ns());
+        let before = self.statuses_heard(start_ns);
+        let lost_before = self.lan.relay_counts("fit").lost;
+        std::thread::sleep(window);
+        let end = Instant::now();
+        let after = self.statuses_heard(unix_ns());
+        let mut counted = BTreeMap::new();
+        let mut silent = Vec::new();
+        for node in COUNTED {
+            let (Some(was), Some(now)) = (before.get(node), after.get(node)) else {
+                silent.push(node);
+                continue;
+            };
+            for (name, value) in &now.counters {
+                let change = *value as i64 - was.counter(name) as i64;
+                counted.insert(format!("{node}/{name}"), change);
+            }
+        }
+        let seconds = |s: Option<&shroud_msg::NodeStatusMessage>| {
+            s.and_then(|s| s.gauge("halted_s")).unwrap_or(f64::NAN)
+        };
+        let halted =
+            (seconds(after.get("arm")) - seconds(before.get("arm"))) / (end - start).as_secs_f64();
+        let heard = lock(&self.heard);
+        let within = |t: &Instant| *t >= start && *t <= end;
+        let answered: std::collections::BTreeSet<u64> = (heard.verdicts.iter())
+            .filter(|(t, _)| within(t))
+            .map(|(_, v)| v.joints_sequence)
+            .collect();
+        let asked: Vec<u64> = (heard.joints.iter())
+            .filter(|(t, _)| within(t) && *t + Duration::from_secs(1) <= end)
+            .map(|(_, sequence)| *sequence)
+            .collect();
+        let mut verdicts = BTreeMap::new();
+        for (_, v) in heard.verdicts.iter().filter(|(t, _)| within(t)) {
+            *verdicts
+                .entry(format!("{:?}", v.verdict).to_lowercase())
+                .or_default() += 1;
+        }
+        let in_window = |values: &[(Instant, f64)]| {
+            (values.iter())
+                .filter(|(t, _)| within(t))
+                .map(|(_, ms)| *ms)
+                .collect()
+        };
+        Measured {
+            loop_ms: percentiles(in_window(&heard.loops_ms)),
+            answered: (
+                asked.iter().filter(|s| answered.contains(s)).count(),
+                asked.len(),
+            ),
+            surrogate_ms: percentiles(in_window(&heard.surrogate_ms)),
+            counted,
+            verdicts,
+            halted,
+            frames_lost: self.lan.relay_counts("fit").lost - lost_before,
+            silent,
+        }
+    }
+}
+
+/// The header of the link conditions table.
+const TABLE_HEADER: &str = "| fit host's link (each way) | joint state → verdict, p50 / p99 ms | joint states answered | cloud → surrogate, p50 / p99 ms | clouds fitted / published | clouds lost (counted by the fit node) | zenoh congestion drops | verdicts | arm halted |
+|---|---|---|---|---|---|---|---|---|";
+
+/// Issue 26's link conditions, checked (not timed): with loss and a
+/// bandwidth a third of the clouds' rate on the link that carries clouds in,
+/// joint states in and verdicts out, verdicts keep answering joint states
+/// (clouds do not starve them), every cloud the scanner published is fitted
+/// or counted lost, and the graph recovers when the link does, restarting
+/// nothing. (Whether the arm moves meanwhile depends on the link's latency
+/// against its deadman: the table of `docs/multi-host.md` measures it.)
+#[test]
+fn a_slow_lossy_link_keeps_verdicts_flowing_and_counts_every_lost_cloud() {
+    let Some(demo) = Demo::start(&conditions_setup(15_000)) else {
+        return;
+    };
+    moving(&demo.observer, "on a plain link", LONG);
+    let calm = demo.statuses(unix_ns());
+    // 15 000 points at 10 Hz are 14 Mbit/s: a third can cross.
+    let slow = condition("0.2 %, 5 Mbit/s", 0, 0.002, Some(5.0));
+    let measured = demo.measure(&slow, Duration::from_secs(4), Duration::from_secs(12));
+    eprintln!("multihost_netns: {TABLE_HEADER}\n{}", measured.row(&slow));
+    assert!(measured.frames_lost > 0, "the relay drops frames");
+    let (answered, asked) = measured.answered;
+    assert!(
+        asked > 0 && answered * 2 > asked,
+        "verdicts answer most joint states across the slow link: {answered} of {asked}"
+    );
+    let lost = measured.count("fit", "sequence_gaps");
+    assert!(
+        lost > 0 && measured.count("fit", "received") > 0,
+        "clouds at three times the link's rate: some cross, the others are lost and counted: {measured:?}"
+    );
+    assert!(
+        measured.congestion_drops() > 0,
+        "zenoh counts the clouds it dropped: {measured:?}"
+    );
+    // Back to a plain link: the arm moves again, and every cloud published
+    // since the calm before is accounted for (the statuses are up to a
+    // second apart: ten clouds either way).
+    demo.lan.impair("fit", Impairment::default());
+    demo.lan.limit_rate("fit", None);
+    moving(&demo.observer, "after the link is plain again", RECOVERY);
+    let settled = demo.statuses(unix_ns());
+    let change = |node: &str, counter: &str| {
+        settled[node].counter(counter) as i64 - calm[node].counter(counter) as i64
+    };
+    // The fit node's sequence gaps count every cloud it did not decode,
+    // those it dropped from its queue too (`dropped_backlog`).
+    let published = change("scanner", "published");
+    let accounted = change("fit", "received") + change("fit", "sequence_gaps");
+    // Each counter is as of its node's status: at 10 Hz, one cloud for every
+    // 0.1 s between the scanner's and the fit node's, at either end, and a
+    // few in flight.
+    let skew = |node_a: &str, node_b: &str, at: &BTreeMap<&str, shroud_msg::NodeStatusMessage>| {
+        at[node_a].stamp_ns.abs_diff(at[node_b].stamp_ns) as f64 * 1e-9
+    };
+    let lag = skew("scanner", "fit", &calm) + skew("scanner", "fit", &settled);
+    let tolerance = (10.0 * lag).ceil() as i64 + 3;
+    assert!(
+        (published - accounted).abs() <= tolerance,
+        "every cloud published is fitted or counted lost: {published} published, \
+         {accounted} accounted for (tolerance {tolerance})"
+    );
+    for host in ["sensor", "fit", "arm"] {
+        let launcher = &settled[format!("launcher.{host}").as_str()];
+        let restarts: u64 = (launcher.counters.iter())
+            .filter(|(name, _)| name.starts_with("restarts."))
+            .map(|(_, n)| *n)
+            .sum();
+        assert_eq!(restarts, 0, "{host}: nodes restarted");
+    }
+    eprintln!(
+        "multihost_netns: slow link: {answered} of {asked} joint states answered; \
+         {published} clouds published, {accounted} fitted or counted lost"
+    );
+}
+
+/// The tables of `docs/multi-host.md`: the demo with clouds of
+/// `SHROUD_LINK_POINTS` points (300 000 unless set) at 10 Hz, the fit host's
+/// link in each condition (`SHROUD_LINK_CONDITIONS`, names separated by
+/// commas; all unless set), a fresh graph for each, and what each does to
+/// latency and drops. A measurement, not a test: `cargo test -p shroud
+/// --test multihost_netns -- --ignored --nocapture link_conditions_table`
+/// (root and `ip netns`).
+#[test]
+#[ignore = "a measurement: prints the link conditions table of docs/multi-host.md"]
+fn link_conditions_table() {
+    let points: usize = std::env::var("SHROUD_LINK_POINTS")
+        .ok()
+        .and_then(|p| p.parse().ok())
+        .unwrap_or(300_000);
+    let conditions = [
+        condition("as is", 0, 0.0, None),
+        condition("10 ms", 10, 0.0, None),
+        condition("50 ms", 50, 0.0, None),
+        condition("1 % loss", 0, 0.01, None),
+        condition("5 % loss", 0, 0.05, None),
+        condition("100 Mbit/s", 0, 0.0, Some(100.0)),
+        condition("20 Mbit/s", 0, 0.0, Some(20.0)),
+        condition("20 ms, 1 %, 50 Mbit/s", 20, 0.01, Some(50.0)),
+    ];
+    let only = std::env::var("SHROUD_LINK_CONDITIONS").unwrap_or_default();
+    let chosen =
+        (conditions.iter()).filter(|c| only.is_empty() || only.split(',').any(|n| n == c.name));
+    let mut rows = Vec::new();
+    // A graph of its own for each condition: after a condition that starved
+    // the fit host's link, zenoh 1.10.2 did not always deliver to that host
+    // again (docs/multi-host.md, known gaps), which would leak into the next
+    // row.
+    for c in chosen {
+        let Some(demo) = Demo::start(&conditions_setup(points)) else {
+            return;
+        };
+        moving(&demo.observer, "on a plain link", LONG);
+        let measured = demo.measure(c, Duration::from_secs(5), Duration::from_secs(20));
+        eprintln!("{}", measured.row(c));
+        eprintln!("  {measured:?}");
+        rows.push(measured.row(c));
+    }
+    println!(
+        "{points} points a cloud at 10 Hz ({:.0} Mbit/s)\n{TABLE_HEADER}\n{}",
+        points as f64 * 12.0 * 8.0 * 10.0 / 1e6,
+        rows.join("\n")
+    );
 }

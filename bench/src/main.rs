@@ -14,6 +14,7 @@ mod guard_separation;
 mod guard_soundness;
 mod latency;
 mod paper000;
+mod peers;
 mod ros2_cdr;
 mod soak;
 
@@ -54,6 +55,12 @@ pub enum Suite {
     /// came within the stop distance (must be 0) and compares productivity
     /// with a binary stop.
     GuardSeparation,
+    /// shroud's 20 x 20 surrogate with the guard's 50-sphere check against
+    /// an elevation map (per-cell maxima) and OctoMap + FCL (Python
+    /// bindings, in a venv made under the target directory) on the same
+    /// scanned clouds: build time, memory, query time, and test spheres
+    /// called free that truly touch (unsafe) or blocked that are clear.
+    Peers,
     /// shroud-ros2's CDR codec against the `cdr` and `cdr-encoding` crates
     /// on one PointCloud2 of `--points` points, beside one copy of the payload.
     Ros2Cdr,
@@ -210,6 +217,7 @@ fn run(args: BenchArgs) -> Result<()> {
         Suite::GuardSoundness => guard_soundness::run_bench(&args),
         Suite::GuardSeparation => guard_separation::run_bench(&args),
         Suite::Ros2Cdr => ros2_cdr::run(&args),
+        Suite::Peers => peers::run(&args),
     }
 }
 

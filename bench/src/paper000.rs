@@ -1,14 +1,21 @@
 //! Paper 000 (Myles & Peters), Section 7: Table 1 (time vs N at 20 x 20), Table 2
 //! (time vs n at N = 30K), Figure 9 (iterations per line), and the Section 3
 //! trial-and-error baseline against Heuristic(σ, b, λ).
+//!
+//! Every fit time of Tables 1 and 2 is also printed as a multiple of the floor
+//! (issue 27: `shroud_surrogate::floor`, the bounding box of the cloud and each
+//! cell's largest height, one thread) timed in the same run, on the same
+//! clouds, its runs taking turns with the default and plain fits'.
 
 use super::{median, timed, BenchArgs};
 use anyhow::Result;
 use shroud_sim::MovingSpheres;
+use shroud_surrogate::floor::Floor;
 use shroud_surrogate::{
     fit_curve_above, fit_curve_by_trial_and_error, FitOptions, Histogram, SurrogateFitter,
     Tightness,
 };
+use std::hint::black_box;
 
 /// Table 1 of the paper: milliseconds on a 2.4 GHz Pentium 4, 20 x 20.
 const TABLE1: [(usize, f64); 5] = [
@@ -39,13 +46,26 @@ fn cloud(points: usize, config: usize) -> Result<Vec<[f32; 3]>> {
 }
 
 struct Timings {
+    /// The floor on a grid of as many cells a side as the fit has control
+    /// points, one thread.
+    floor_ms: f64,
     default_ms: f64,
     plain_ms: f64,
     tight_ms: f64,
     warm_ms: f64,
 }
 
-/// Median cold-fit times over `configs x runs` fits, plus a warm-started stream.
+impl Timings {
+    /// The ratio columns: default, plain, tight and warm each over the floor.
+    fn over_floor(&self) -> String {
+        [self.default_ms, self.plain_ms, self.tight_ms, self.warm_ms]
+            .map(|ms| format!(" {:.2}x |", ms / self.floor_ms))
+            .concat()
+    }
+}
+
+/// Median cold-fit times over `configs x runs` fits, plus a warm-started
+/// stream, and the floor's median over a run before each default and plain fit.
 fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
     let (configs, runs) = if args.quick {
         (2, 3)
@@ -59,13 +79,19 @@ fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
         ..Default::default()
     };
     let (mut default, mut plain, mut tight, mut warm) = (vec![], vec![], vec![], vec![]);
+    let (mut floor, mut floor_ms) = (Floor::new(grid), vec![]);
     for config in 0..configs {
         let pts = cloud(points, config)?;
+        black_box(floor.cell_maxima(&pts));
         for (tightness, out) in [
             (Tightness::Lowered, &mut default),
             (Tightness::Plain, &mut plain),
         ] {
             for _ in 0..runs {
+                let ((), ms) = timed(|| {
+                    black_box(floor.cell_maxima(black_box(&pts)));
+                });
+                floor_ms.push(ms);
                 let mut fitter = SurrogateFitter::new(options(tightness))?;
                 let (fit, ms) = timed(|| fitter.fit(&pts));
                 certified(&fit?)?;
@@ -81,6 +107,7 @@ fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
         warm.extend(warm_stream(points, grid, config, runs)?);
     }
     Ok(Timings {
+        floor_ms: median(&mut floor_ms),
         default_ms: median(&mut default),
         plain_ms: median(&mut plain),
         tight_ms: median(&mut tight),
@@ -124,7 +151,9 @@ fn certified(s: &shroud_surrogate::Surrogate) -> Result<()> {
 
 pub fn run(args: &BenchArgs) -> Result<()> {
     let threads = rayon::current_num_threads();
-    println!("# shroud-bench surrogate ({threads} threads; medians of cold fits unless noted)\n");
+    println!(
+        "# shroud-bench surrogate (fits: {threads} rayon threads, floor: 1 thread; medians of cold fits unless noted)\n"
+    );
     table1(args)?;
     table2(args)?;
     figure9(args)?;
@@ -134,20 +163,22 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 
 fn table1(args: &BenchArgs) -> Result<()> {
     println!("## Table 1: time vs N, 20 x 20, certification included\n");
-    println!("| N | paper (ms, P4 2.4 GHz) | shroud default (ms) | shroud --plain (ms) | shroud --tight (ms) | warm stream (ms) | points/s (default) | speed-up vs paper |");
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| N | paper (ms, P4 2.4 GHz) | floor (ms) | shroud default (ms) | shroud --plain (ms) | shroud --tight (ms) | warm stream (ms) | default / floor | plain / floor | tight / floor | warm / floor | points/s (default) | speed-up vs paper |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for (n, paper) in TABLE1 {
         if args.quick && n > 30_000 {
             continue;
         }
         let t = measure(n, 20, args)?;
         println!(
-            "| {}K | {paper} | {:.2} | {:.2} | {:.2} | {:.2} | {:.0}M | {:.0}x |",
+            "| {}K | {paper} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |{} {:.0}M | {:.0}x |",
             n / 1000,
+            t.floor_ms,
             t.default_ms,
             t.plain_ms,
             t.tight_ms,
             t.warm_ms,
+            t.over_floor(),
             n as f64 / t.default_ms / 1e3,
             paper / t.default_ms,
         );
@@ -158,17 +189,37 @@ fn table1(args: &BenchArgs) -> Result<()> {
 
 fn table2(args: &BenchArgs) -> Result<()> {
     println!("## Table 2: time vs grid n x n, N = 30K\n");
-    println!("| n | paper (ms) | shroud default (ms) | shroud --plain (ms) | shroud --tight (ms) | warm stream (ms) |");
-    println!("|---:|---:|---:|---:|---:|---:|");
+    println!("| n | paper (ms) | floor (ms) | shroud default (ms) | shroud --plain (ms) | shroud --tight (ms) | warm stream (ms) | default / floor | plain / floor | tight / floor | warm / floor |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    // (n, paper, default, tight) of the rows measured.
+    let mut rows = Vec::new();
     for (n, paper) in TABLE2 {
         if args.quick && n > 20 {
             continue;
         }
         let t = measure(30_000, n, args)?;
         println!(
-            "| {n} | {paper} | {:.2} | {:.2} | {:.2} | {:.2} |",
-            t.default_ms, t.plain_ms, t.tight_ms, t.warm_ms
+            "| {n} | {paper} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |{}",
+            t.floor_ms,
+            t.default_ms,
+            t.plain_ms,
+            t.tight_ms,
+            t.warm_ms,
+            t.over_floor()
         );
+        rows.push((n, paper, t.default_ms, t.tight_ms));
+    }
+    if let (Some(&(n0, paper0, first, _)), Some(&(n1, paper1, last, _))) =
+        (rows.first(), rows.last())
+    {
+        println!(
+            "\nDefault fit, {n1} x {n1}: {:.2}x the {n0} x {n0} time (paper: {:.2}x).",
+            last / first,
+            paper1 / paper0
+        );
+    }
+    if let Some(&(_, _, default, tight)) = rows.iter().find(|row| row.0 == 40) {
+        println!("--tight, 40 x 40: {:.1}x the default fit.", tight / default);
     }
     println!();
     Ok(())

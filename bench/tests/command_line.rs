@@ -23,6 +23,7 @@ fn the_help_lists_every_suite() {
         "guard-soundness",
         "guard-separation",
         "ros2-cdr",
+        "peers",
     ] {
         assert!(help.contains(suite), "{suite} missing from:\n{help}");
     }

@@ -6,6 +6,7 @@
 pub mod bench;
 pub mod browser;
 pub mod device_rig;
+pub mod impair;
 pub mod launched;
 pub mod netns;
 pub mod python;

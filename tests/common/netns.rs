@@ -5,8 +5,12 @@
 //! process started on a host runs in its namespace with a private `/dev/shm`
 //! (zenoh's shared memory would cross namespaces otherwise). Everything,
 //! processes left in the namespaces included, goes when the [`Lan`] is
-//! dropped. Needs root and `ip netns`.
+//! dropped. Needs root and `ip netns`. A host may be given a link with delay
+//! and loss instead of a veth ([`Lan::with_relayed`], [`super::impair`]), and
+//! any host's link a bandwidth limit ([`Lan::limit_rate`]).
 
+use super::impair::{Impairment, Relay, RelayCounts};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use zenoh::Wait;
@@ -16,7 +20,12 @@ pub fn unusable() -> Option<String> {
     if unsafe { libc::geteuid() } != 0 {
         return Some("not root: network namespaces need root".into());
     }
-    for (tool, args) in [("ip", &["netns", "list"][..]), ("unshare", &["--help"][..])] {
+    let tools = [
+        ("ip", &["netns", "list"][..]),
+        ("unshare", &["--help"][..]),
+        ("tc", &["qdisc", "show"][..]),
+    ];
+    for (tool, args) in tools {
         match Command::new(tool).args(args).output() {
             Ok(out) if out.status.success() => {}
             Ok(out) => {
@@ -48,18 +57,25 @@ pub struct Lan {
     /// The first three bytes of the hosts' /24.
     subnet: String,
     hosts: Vec<String>,
+    /// The relays of hosts whose link has delay and loss, by host.
+    relays: BTreeMap<String, Relay>,
 }
 
 /// Runs `ip args`; its stderr as the error.
 fn ip(args: &[&str]) -> Result<(), String> {
-    let out = Command::new("ip")
+    ip_tool("ip", args)
+}
+
+/// Runs `tool args` (`ip`, `tc`); its stderr as the error.
+fn ip_tool(tool: &str, args: &[&str]) -> Result<(), String> {
+    let out = Command::new(tool)
         .args(args)
         .output()
-        .map_err(|e| format!("ip: {e}"))?;
+        .map_err(|e| format!("{tool}: {e}"))?;
     match out.status.success() {
         true => Ok(()),
         false => Err(format!(
-            "ip {}: {}",
+            "{tool} {}: {}",
             args.join(" "),
             String::from_utf8_lossy(&out.stderr).trim()
         )),
@@ -71,11 +87,22 @@ impl Lan {
     /// their order (X and Y from the test's pid, as the names are), and the
     /// root namespace at `10.X.Y.254`.
     pub fn new(hosts: &[&str]) -> Result<Lan, String> {
+        Lan::with_relayed(hosts, &[])
+    }
+
+    /// [`Lan::new`], but the hosts of `relayed` reach the bridge through a
+    /// [`Relay`] between two TAPs (no delay nor loss until
+    /// [`Lan::impair`]).
+    pub fn with_relayed(hosts: &[&str], relayed: &[&str]) -> Result<Lan, String> {
+        if !relayed.is_empty() && !Path::new("/dev/net/tun").exists() {
+            return Err("no /dev/net/tun: a relayed link needs TAP devices".into());
+        }
         let pid = std::process::id();
-        let lan = Lan {
+        let mut lan = Lan {
             prefix: format!("shr{pid}"),
             subnet: format!("10.{}.{}", 100 + (pid >> 8) % 100, pid & 0xff),
             hosts: hosts.iter().map(|h| h.to_string()).collect(),
+            relays: BTreeMap::new(),
         };
         // Leftovers of runs that were killed, this pid's included.
         sweep_dead_runs();
@@ -88,10 +115,19 @@ impl Lan {
             let ns = lan.ns(host);
             let port = format!("v{i}");
             ip(&["netns", "add", &ns])?;
-            ip(&[
-                "-n", &switch, "link", "add", &port, "type", "veth", "peer", "name", "eth0",
-                "netns", &ns,
-            ])?;
+            match relayed.contains(&host.as_str()) {
+                true => {
+                    ip(&["-n", &ns, "tuntap", "add", "dev", "eth0", "mode", "tap"])?;
+                    ip(&["-n", &switch, "tuntap", "add", "dev", &port, "mode", "tap"])?;
+                    let relay = Relay::start(&ns, "eth0", &switch, &port)
+                        .map_err(|e| format!("the relay of {host}'s link: {e}"))?;
+                    lan.relays.insert(host.clone(), relay);
+                }
+                false => ip(&[
+                    "-n", &switch, "link", "add", &port, "type", "veth", "peer", "name", "eth0",
+                    "netns", &ns,
+                ])?,
+            }
             ip(&["-n", &switch, "link", "set", &port, "master", "br0", "up"])?;
             let address = format!("{}/24", lan.addr(host));
             ip(&["-n", &ns, "addr", "add", &address, "dev", "eth0"])?;
@@ -132,9 +168,12 @@ impl Lan {
 
     /// The address of `host` on the bridge.
     pub fn addr(&self, host: &str) -> String {
-        let i = (self.hosts.iter().position(|h| h == host))
-            .unwrap_or_else(|| panic!("{host} is not a host of the LAN"));
-        format!("{}.{}", self.subnet, i + 1)
+        format!("{}.{}", self.subnet, self.index(host) + 1)
+    }
+
+    fn index(&self, host: &str) -> usize {
+        (self.hosts.iter().position(|h| h == host))
+            .unwrap_or_else(|| panic!("{host} is not a host of the LAN"))
     }
 
     /// The root namespace's address on the bridge.
@@ -150,6 +189,39 @@ impl Lan {
     /// Brings `host`'s link back up.
     pub fn link_up(&self, host: &str) {
         ip(&["-n", &self.ns(host), "link", "set", "eth0", "up"]).unwrap();
+    }
+
+    /// Delay and loss on `host`'s link from now on, both ways (a host given
+    /// to [`Lan::with_relayed`]).
+    pub fn impair(&self, host: &str, impairment: Impairment) {
+        self.relay(host).set(impairment);
+    }
+
+    /// The frames `host`'s relay handled so far.
+    pub fn relay_counts(&self, host: &str) -> RelayCounts {
+        self.relay(host).counts()
+    }
+
+    fn relay(&self, host: &str) -> &Relay {
+        (self.relays.get(host)).unwrap_or_else(|| panic!("{host}'s link has no relay"))
+    }
+
+    /// Limits `host`'s link to `mbit_s` megabits a second each way with the
+    /// kernel's token bucket (`tbf`: a 10 ms burst, at most 100 ms queued,
+    /// beyond which frames are dropped), or lifts the limit (`None`).
+    pub fn limit_rate(&self, host: &str, mbit_s: Option<f64>) {
+        let port = format!("v{}", self.index(host));
+        for (ns, device) in [(self.ns(host), "eth0"), (self.switch(), port.as_str())] {
+            let _ = ip_tool("tc", &["-n", &ns, "qdisc", "del", "dev", device, "root"]);
+            let Some(rate) = mbit_s else { continue };
+            let burst = format!("{}", ((rate * 1e6 / 8.0 * 0.01) as u64).max(3_000));
+            let rate = format!("{}kbit", (rate * 1000.0) as u64);
+            let args = [
+                "-n", &ns, "qdisc", "add", "dev", device, "root", "tbf", "rate", &rate, "burst",
+                &burst, "latency", "100ms",
+            ];
+            ip_tool("tc", &args).unwrap();
+        }
     }
 
     /// `program` to run on `host`: in its namespace, in a mount namespace of
@@ -176,7 +248,9 @@ impl Lan {
 
     /// Kills what runs in the namespaces, deletes them (and with them every
     /// veth, the root namespace's end included).
-    fn remove(&self) {
+    fn remove(&mut self) {
+        // The relays hold the TAPs: stop them before their namespaces go.
+        self.relays.clear();
         let mut namespaces: Vec<String> = self.hosts.iter().map(|h| self.ns(h)).collect();
         namespaces.push(self.switch());
         for ns in &namespaces {

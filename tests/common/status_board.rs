@@ -57,22 +57,34 @@ impl StatusBoard {
         timeout: Duration,
         done: impl Fn(&NodeStatusMessage) -> bool,
     ) -> NodeStatusMessage {
+        let found = self.try_wait_for(node, timeout, done);
+        found.unwrap_or_else(|| {
+            panic!(
+                "no status of {node} with {what} within {timeout:?}; last: {:?}",
+                self.latest(node)
+            )
+        })
+    }
+
+    /// The first status of `node` (the latest one included) that satisfies
+    /// `done`, if one comes within `timeout`.
+    pub fn try_wait_for(
+        &self,
+        node: &str,
+        timeout: Duration,
+        done: impl Fn(&NodeStatusMessage) -> bool,
+    ) -> Option<NodeStatusMessage> {
         let deadline = Instant::now() + timeout;
         let mut latest = lock(&self.latest);
         loop {
             if let Some(status) = latest.get(node).filter(|s| done(s)) {
-                return status.clone();
+                return Some(status.clone());
             }
             let left = deadline.saturating_duration_since(Instant::now());
-            assert!(
-                !left.is_zero(),
-                "no status of {node} with {what} within {timeout:?}; last: {:?}",
-                latest.get(node)
-            );
-            latest = self
-                .latest
-                .1
-                .wait_timeout(latest, left)
+            if left.is_zero() {
+                return None;
+            }
+            latest = (self.latest.1.wait_timeout(latest, left))
                 .unwrap_or_else(|p| p.into_inner())
                 .0;
         }

@@ -54,8 +54,8 @@ pub use status::NodeStatusMessage;
 pub use surface::{Certificate, Domain, Side, DOMAIN_SLACK};
 pub use surrogate::{SurfaceMessage, SurrogateMessage};
 pub use topic::{
-    check_name, is_sector_stream, sector_stream, Congestion, TopicKey, TopicKind, TopicQos, Topics,
-    ROOT,
+    check_name, is_sector_stream, sector_stream, Congestion, TopicKey, TopicKind, TopicPriority,
+    TopicQos, Topics, ROOT,
 };
 
 /// The schema version of every message except joint states and collision

@@ -75,21 +75,24 @@ impl TopicKind {
     /// The topic's documented quality of service (`docs/formats.md`), which
     /// every publisher of the kind uses.
     pub fn qos(self) -> TopicQos {
-        let (congestion, urgent) = match self {
+        use TopicPriority::{Bulk, Data, RealTime};
+        let (congestion, priority) = match self {
             // Each supersedes the last: a sensor or fitter never waits for a
-            // slow reader.
-            Self::Cloud | Self::Status | Self::Smooth | Self::Alive => (Congestion::Drop, false),
+            // slow reader. Clouds are the bulk of the traffic: everything
+            // else overtakes them in a congested link's queues.
+            Self::Cloud => (Congestion::Drop, Bulk),
+            Self::Status | Self::Smooth | Self::Alive => (Congestion::Drop, Data),
             // Superseding too, but the guard must get fresh ones first.
-            Self::Surrogate | Self::Joints => (Congestion::Drop, true),
+            Self::Surrogate | Self::Joints => (Congestion::Drop, RealTime),
             // A stop must never be discarded by a congested link.
-            Self::Collision => (Congestion::Block, true),
+            Self::Collision => (Congestion::Block, RealTime),
             // A commit or a clear must arrive.
-            Self::Blend => (Congestion::Block, false),
+            Self::Blend => (Congestion::Block, Data),
         };
         TopicQos {
             congestion,
-            real_time: urgent,
-            express: urgent,
+            priority,
+            express: priority == RealTime,
         }
     }
 }
@@ -103,12 +106,23 @@ pub enum Congestion {
     Block,
 }
 
+/// Which of a link's queues a topic's messages wait in: a higher one is
+/// always sent first.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TopicPriority {
+    /// What the guard and the arm decide with.
+    RealTime,
+    /// The default: statuses, models, commands.
+    Data,
+    /// Large and superseding: clouds.
+    Bulk,
+}
+
 /// Per-topic quality of service, as plain data; the nodes map it to zenoh's.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TopicQos {
     pub congestion: Congestion,
-    /// Real-time priority instead of the default data priority.
-    pub real_time: bool,
+    pub priority: TopicPriority,
     /// Sent at once rather than batched.
     pub express: bool,
 }
@@ -237,7 +251,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn only_stops_and_blend_commands_block_and_the_guards_inputs_are_urgent() {
+    fn only_stops_and_blend_commands_block_the_guards_inputs_are_urgent_and_clouds_bulk() {
         for kind in TopicKind::ALL {
             let qos = kind.qos();
             let blocks = qos.congestion == Congestion::Block;
@@ -250,7 +264,10 @@ mod tests {
                 kind,
                 TopicKind::Surrogate | TopicKind::Joints | TopicKind::Collision
             );
-            assert_eq!((qos.real_time, qos.express), (urgent, urgent), "{kind}");
+            let real_time = qos.priority == TopicPriority::RealTime;
+            assert_eq!((real_time, qos.express), (urgent, urgent), "{kind}");
+            let bulk = qos.priority == TopicPriority::Bulk;
+            assert_eq!(bulk, kind == TopicKind::Cloud, "{kind}");
         }
     }
 

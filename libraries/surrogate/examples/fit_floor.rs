@@ -3,11 +3,11 @@
 //! them: `nodes/src/args/surrogate.rs`), each also as a multiple of the floor
 //! measured in the same run on the same clouds.
 //!
-//! The floor is the least any fit must do: one pass taking the bounding box of
-//! the points' `(x, y)`, then one pass binning every point into a `g x g` grid
-//! keeping each cell's largest `z` (f32, one thread, no allocation beyond the
-//! grid). Its grid has as many cells along a side as the fit has control points
-//! (20x20 cells for a 20x20 fit, which has 19x19 cells: a hair more work).
+//! The floor is `shroud_surrogate::floor::Floor`, the one `shroud-bench
+//! surrogate` times too: the bounding box of the points' `(x, y)`, then the
+//! largest `z` of each of `g x g` cells, one thread. Its grid has as many
+//! cells along a side as the fit has control points (20x20 cells for a 20x20
+//! fit, which has 19x19 cells: a hair more work).
 //!
 //! The clouds are `bench/src/paper000.rs`'s: `shroud_sim::MovingSpheres` (two
 //! moving spherical scatter clouds), seed `1000 + config`, time `0.37 config`.
@@ -23,6 +23,7 @@
 //! fitter's speed left its results bit for bit the same.
 
 use shroud_graph::metrics::{live_bytes, peak_bytes, reset_peak, CountingAllocator};
+use shroud_surrogate::floor::Floor;
 use shroud_surrogate::{FitOptions, Surrogate, SurrogateFitter, Tightness};
 use std::hint::black_box;
 use std::time::Instant;
@@ -54,25 +55,6 @@ fn cloud(points: usize, config: usize) -> Vec<[f32; 3]> {
     .expect("scene")
 }
 
-/// The floor: bounding box of `(x, y)`, then the largest `z` of each of
-/// `grid x grid` cells; two plain loops over the points, one thread.
-fn floor(points: &[[f32; 3]], grid: usize, cells: &mut [f32]) {
-    let (mut lo, mut hi) = ([f32::INFINITY; 2], [f32::NEG_INFINITY; 2]);
-    for &[x, y, _] in points {
-        (lo[0], hi[0]) = (lo[0].min(x), hi[0].max(x));
-        (lo[1], hi[1]) = (lo[1].min(y), hi[1].max(y));
-    }
-    let scale = [0, 1].map(|k| grid as f32 / (hi[k] - lo[k]));
-    cells.fill(f32::NEG_INFINITY);
-    let last = grid - 1;
-    for p in points {
-        let i = (((p[0] - lo[0]) * scale[0]) as usize).min(last);
-        let j = (((p[1] - lo[1]) * scale[1]) as usize).min(last);
-        let cell = &mut cells[j * grid + i];
-        *cell = cell.max(p[2]);
-    }
-}
-
 /// `shroud fit`'s options for a grid: the CLI's defaults but for `tightness`
 /// (`--plain` is `Plain`, `--tight` is `Optimal`, neither is `Lowered`).
 fn options(grid: usize, tightness: Tightness) -> FitOptions {
@@ -91,10 +73,13 @@ fn certified(s: &Surrogate) {
 }
 
 /// Milliseconds of one run of kind `k` on `points`.
-fn time_kind(k: usize, points: &[[f32; 3]], grid: usize, cells: &mut [f32]) -> f64 {
+fn time_kind(k: usize, points: &[[f32; 3]], floor: &mut Floor) -> f64 {
+    let grid = floor.grid();
     let start = Instant::now();
     match k {
-        0 => floor(black_box(points), grid, cells),
+        0 => {
+            black_box(floor.cell_maxima(black_box(points)));
+        }
         _ => {
             let tightness = [Tightness::Lowered, Tightness::Plain, Tightness::Optimal][k - 1];
             let fit = SurrogateFitter::new(options(grid, tightness))
@@ -106,7 +91,6 @@ fn time_kind(k: usize, points: &[[f32; 3]], grid: usize, cells: &mut [f32]) -> f
             return ms;
         }
     }
-    black_box(&cells);
     start.elapsed().as_secs_f64() * 1e3
 }
 
@@ -131,16 +115,16 @@ fn peak_mb(points: &[[f32; 3]], grid: usize) -> f64 {
 /// kinds take turns, so a slow spell of the machine hits all of them alike).
 fn measure(points: usize, grid: usize, runs: usize, configs: usize) -> [f64; 4] {
     let mut times: [Vec<f64>; 4] = Default::default();
-    let mut cells = vec![0.0f32; grid * grid];
+    let mut floor = Floor::new(grid);
     for config in 0..configs {
         let pts = cloud(points, config);
         // Warm: caches, the allocator's pages, rayon's threads.
         for k in 0..KINDS.len() {
-            time_kind(k, &pts, grid, &mut cells);
+            time_kind(k, &pts, &mut floor);
         }
         for _ in 0..runs {
             for (k, out) in times.iter_mut().enumerate() {
-                out.push(time_kind(k, &pts, grid, &mut cells));
+                out.push(time_kind(k, &pts, &mut floor));
             }
         }
     }

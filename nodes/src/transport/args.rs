@@ -6,6 +6,29 @@ use clap::Args;
 use shroud_msg::Topics;
 use std::path::PathBuf;
 
+/// The kernel's send buffer of a `tls/` link (a link between hosts), bytes.
+/// zenoh orders messages by priority in its own queues; what it has written
+/// to the socket goes out first, whatever its priority, and TCP keeps at
+/// most this much in flight, so it also bounds what a slow link's own queue
+/// holds of this link. Left to the kernel's autotuning, a socket of a link
+/// slower than the clouds it carries fills to megabytes: a joint state then
+/// waited 1.6 s (p50) behind 30 000-point clouds on a link with 20 ms of
+/// delay, 1 % loss and 10 Mbit/s (docs/multi-host.md, slow links). Linux
+/// doubles the value: 32 KiB is 0.26 ms at 1 Gbit/s and 13 ms at 20
+/// Mbit/s, and caps one link at 32 KiB per round trip (260 Mbit/s at 1 ms,
+/// 26 Mbit/s at 10 ms), which surrogates, joint states and verdicts never
+/// need; only clouds sent across a long link would.
+pub const TLS_SEND_BUFFER: u32 = 16 * 1024;
+
+/// The largest batch zenoh writes to a link at once, bytes (its default is
+/// 64 KiB). A real-time message waits for the batch being written: 16 KiB
+/// is 13 ms at 10 Mbit/s where 64 KiB is 52 ms. Like the queue sizes below,
+/// it is a setting of the whole session (set with TLS, so on a host's
+/// router and on tools that reach it), and zenoh takes the smaller batch of
+/// a link's two ends: the router's loopback links to its nodes use it too,
+/// which costs them nothing (clouds cross those in shared memory).
+pub const TLS_BATCH_SIZE: u32 = 16 * 1024;
+
 #[derive(Debug, Clone, Args)]
 pub struct ZenohArgs {
     /// Namespace of every key: `shroud/<namespace>/...`.
@@ -158,6 +181,23 @@ impl ZenohArgs {
             ("transport/link/tls/verify_name_on_connect", "true".into()),
             // A link does not outlive the certificate it was opened with.
             ("transport/link/tls/close_link_on_expiration", "true".into()),
+            ("transport/link/tls/so_sndbuf", TLS_SEND_BUFFER.to_string()),
+            // Clouds (priority data-low) wait in zenoh's queue, not in the
+            // socket: the most it allows, 16 batches (256 KiB). A cloud that
+            // does not fit waits for room at most 50 ms in all (zenoh's
+            // `max_wait_before_drop_fragments`, left as it is: the router's
+            // task routing a cloud waits with it, holding up whatever else
+            // came on the same link), and is then cut short, its sent
+            // fragments wasted: so a cloud crosses a link only if the link
+            // drains what exceeds the queue within 50 ms. Real-time messages
+            // are sent first whatever this queue holds.
+            ("transport/link/tx/queue/size/data_low", "16".into()),
+            // An express message (joint states, verdicts, surrogates) takes
+            // a batch of its own: two (the default) are two messages, and a
+            // third that comes while a cloud's batch is being written is
+            // dropped after a millisecond.
+            ("transport/link/tx/queue/size/real_time", "16".into()),
+            ("transport/link/tx/batch_size", TLS_BATCH_SIZE.to_string()),
         ])
     }
 

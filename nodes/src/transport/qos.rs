@@ -2,7 +2,7 @@
 //! ([`TopicKind::qos`]): the one place that maps shroud's QoS table to zenoh's.
 
 use anyhow::Result;
-use shroud_msg::{Congestion, TopicKind};
+use shroud_msg::{Congestion, TopicKind, TopicPriority};
 use zenoh::qos::{CongestionControl, Priority};
 use zenoh::Wait;
 
@@ -17,10 +17,10 @@ pub fn topic_publisher(
         Congestion::Drop => CongestionControl::Drop,
         Congestion::Block => CongestionControl::Block,
     };
-    let priority = if qos.real_time {
-        Priority::RealTime
-    } else {
-        Priority::default()
+    let priority = match qos.priority {
+        TopicPriority::RealTime => Priority::RealTime,
+        TopicPriority::Data => Priority::Data,
+        TopicPriority::Bulk => Priority::DataLow,
     };
     session
         .declare_publisher(key.clone())

@@ -13,7 +13,9 @@
 //! key expression includes the put's. Data goes out to any subscriber;
 //! subscribing, liveliness and replies are free; queries and queryables only
 //! in shroud's key space, so zenoh's admin space answers no remote query and
-//! no remote queryable can pose as it.
+//! no remote queryable can pose as it (but for the host's own processes,
+//! whose statuses query their own admin space, [`ADMIN_SPACE`], over
+//! loopback).
 //! A link matching several subjects is allowed what any of them allows
 //! (zenoh 1.10 `access_control.rs`; checked against zenoh in
 //! `tests/multihost.rs`).
@@ -78,6 +80,9 @@ const DECLARE: [&str; 5] = [
 const BOTH: [&str; 2] = ["ingress", "egress"];
 /// The loopback interface (Linux), the only one local processes use.
 const LOOPBACK: &str = "lo";
+/// The admin spaces, which a host's own processes may query (a node asks
+/// its own for its drop counts, `@/<zid>/<kind>/metrics`).
+pub const ADMIN_SPACE: &str = "@/**";
 /// The catch-all subject (no property: every link).
 const EVERYONE: &str = "everyone";
 /// The local processes' subject.
@@ -167,14 +172,27 @@ impl LaunchFile {
             acl.subjects.push(subject("routers", Some(routers), None));
             acl.policies.push(policy(&["relay"], &["routers"]));
         }
-        // This host's own processes: only over loopback.
+        // This host's own processes: only over loopback. Their queries of
+        // their own admin space (the drop counts of their statuses) reach
+        // the router too, which has nothing to answer: allowed, so that they
+        // are not counted as refused. (These processes may publish
+        // anything already; they may read the router's admin space too. A
+        // few such queries a minute still go on to other routers, which
+        // refuse and count them.)
         acl.rules
             .push(rule_for("local", &PUBLISH, &["ingress"], &["**"]));
+        acl.rules.push(rule_for(
+            "local-admin",
+            &["query"],
+            &["ingress"],
+            &[ADMIN_SPACE],
+        ));
         acl.subjects.push(AclSubject {
             interfaces: Some(vec![LOOPBACK]),
             ..subject(LOCAL, None, Some(vec!["tcp"]))
         });
-        acl.policies.push(policy(&["local"], &[LOCAL]));
+        acl.policies
+            .push(policy(&["local", "local-admin"], &[LOCAL]));
         for (name, own) in self.keys_by_host()? {
             let (rule_id, subject_id) = (format!("{name}-publishes"), format!("host-{name}"));
             let own: Vec<&str> = own.iter().map(String::as_str).collect();
@@ -283,6 +301,33 @@ mod tests {
 
     fn tls(common_name: &str) -> (Option<&str>, &str, &str) {
         (Some(common_name), "tls", "eth0")
+    }
+
+    #[test]
+    fn only_local_processes_may_query_the_admin_space() {
+        let acl = cell().access_control("arm").unwrap().unwrap();
+        let metric_rules: Vec<&AclRule> = (acl.rules.iter())
+            .filter(|r| r.key_exprs.contains(&ADMIN_SPACE.to_string()))
+            .collect();
+        assert_eq!(metric_rules.len(), 1);
+        let rule = metric_rules[0];
+        assert_eq!(
+            (rule.messages.clone(), rule.flows.clone()),
+            (vec!["query"], vec!["ingress"])
+        );
+        let holders: Vec<&AclPolicy> = (acl.policies.iter())
+            .filter(|p| p.rules.contains(&rule.id))
+            .collect();
+        assert_eq!(holders.len(), 1);
+        assert_eq!(holders[0].subjects, vec![LOCAL.to_string()]);
+        let local = acl.subjects.iter().find(|s| s.id == LOCAL).unwrap();
+        assert_eq!(local.interfaces, Some(vec![LOOPBACK]));
+        // No other rule lets a query into the admin space.
+        let admin = (acl.rules.iter())
+            .filter(|r| r.messages.contains(&"query"))
+            .flat_map(|r| r.key_exprs.iter())
+            .filter(|k| k.starts_with('@') || k.as_str() == "**");
+        assert_eq!(admin.collect::<Vec<_>>(), vec![ADMIN_SPACE]);
     }
 
     #[test]
