@@ -30,6 +30,7 @@ pub struct Impairment {
 /// Frames the relay handled, both directions together.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct RelayCounts {
+    /// Written to the other TAP.
     pub forwarded: u64,
     /// Dropped by the loss probability.
     pub lost: u64,
@@ -198,6 +199,7 @@ impl Relay {
         *self.impairment.lock().unwrap() = impairment;
     }
 
+    /// What the relay did so far.
     pub fn counts(&self) -> RelayCounts {
         *self.counts.lock().unwrap()
     }

@@ -122,6 +122,7 @@ pub enum TopicPriority {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TopicQos {
     pub congestion: Congestion,
+    /// Which of a link's queues its messages wait in.
     pub priority: TopicPriority,
     /// Sent at once rather than batched.
     pub express: bool,
