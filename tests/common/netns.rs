@@ -111,6 +111,15 @@ impl Lan {
         ip(&["netns", "add", &switch])?;
         ip(&["-n", &switch, "link", "add", "br0", "type", "bridge"])?;
         ip(&["-n", &switch, "link", "set", "br0", "up"])?;
+        if !relayed.is_empty() {
+            // [`Lan::limit_rate`] needs the kernel's token bucket: say so
+            // now rather than halfway through a test.
+            let probe = ["-n", &switch, "qdisc", "add", "dev", "br0", "root", "tbf"];
+            let rate = ["rate", "1mbit", "burst", "3000", "latency", "10ms"];
+            ip_tool("tc", &[&probe[..], &rate[..]].concat())
+                .map_err(|e| format!("no tbf qdisc to limit a link's rate: {e}"))?;
+            ip_tool("tc", &["-n", &switch, "qdisc", "del", "dev", "br0", "root"])?;
+        }
         for (i, host) in lan.hosts.iter().enumerate() {
             let ns = lan.ns(host);
             let port = format!("v{i}");
