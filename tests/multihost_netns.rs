@@ -34,6 +34,7 @@ use common::impair::Impairment;
 use common::netns::{self, Lan};
 use common::status_board::StatusBoard;
 use common::{inbox, joint_spread_if_any, unix_ns, Proc};
+use shroud_graph::metrics::Percentiles;
 use shroud_msg::{CollisionMessage, GuardVerdict, SurrogateMessage};
 use shroud_surrogate::SurrogateWire;
 use std::collections::BTreeMap;
@@ -1112,27 +1113,18 @@ impl Measured {
     }
 }
 
-/// The median and 99th percentile of `values` (nearest rank; none when
-/// empty).
-fn percentiles(mut values: Vec<f64>) -> Option<(f64, f64)> {
-    values.sort_by(f64::total_cmp);
-    let at = |q: usize| values[(values.len() * q).div_ceil(100).max(1) - 1];
-    (!values.is_empty()).then(|| (at(50), at(99)))
+/// The median and 99th percentile of `values` (nearest rank, as the nodes'
+/// latency gauges; none when empty).
+fn percentiles(values: Vec<f64>) -> Option<(f64, f64)> {
+    let mut window = Percentiles::new(values.len());
+    values.into_iter().for_each(|v| window.push(v));
+    window.summary().map(|s| (s.p50, s.p99))
 }
 
 impl Demo {
-    /// Every counted node's status published after `after_ns`.
+    /// Every counted node's status published after `after_ns`, of those
+    /// whose status comes within 5 s (a silent node is left out).
     fn statuses(&self, after_ns: u64) -> BTreeMap<&'static str, shroud_msg::NodeStatusMessage> {
-        (COUNTED.iter())
-            .map(|node| (*node, self.board.published_after(node, after_ns)))
-            .collect()
-    }
-
-    /// [`Demo::statuses`], of the nodes whose status comes within 5 s.
-    fn statuses_heard(
-        &self,
-        after_ns: u64,
-    ) -> BTreeMap<&'static str, shroud_msg::NodeStatusMessage> {
         let within = Duration::from_secs(5);
         (COUNTED.iter())
             .filter_map(|node| {
@@ -1149,11 +1141,11 @@ impl Demo {
         self.lan.limit_rate("fit", condition.mbit_s);
         std::thread::sleep(settle);
         let (start, start_ns) = (Instant::now(), unix_ns());
-        let before = self.statuses_heard(start_ns);
+        let before = self.statuses(start_ns);
         let lost_before = self.lan.relay_counts("fit").lost;
         std::thread::sleep(window);
         let end = Instant::now();
-        let after = self.statuses_heard(unix_ns());
+        let after = self.statuses(unix_ns());
         let mut counted = BTreeMap::new();
         let mut silent = Vec::new();
         for node in COUNTED {
@@ -1239,6 +1231,21 @@ fn a_slow_lossy_link_keeps_verdicts_flowing_and_counts_every_lost_cloud() {
     panic!("the slow link failed twice, on fresh graphs: {failures:#?}");
 }
 
+/// Every counted node's status from now on, or which nodes were silent.
+fn every_status(
+    demo: &Demo,
+) -> Result<BTreeMap<&'static str, shroud_msg::NodeStatusMessage>, String> {
+    let heard = demo.statuses(unix_ns());
+    let silent: Vec<&&str> = COUNTED
+        .iter()
+        .filter(|n| !heard.contains_key(**n))
+        .collect();
+    match silent.is_empty() {
+        true => Ok(heard),
+        false => Err(format!("no status within 5 s from {silent:?}")),
+    }
+}
+
 /// One round of the slow link test: `Err` says what failed (a skip is
 /// `Ok`).
 fn slow_link_round() -> Result<(), String> {
@@ -1250,7 +1257,7 @@ fn slow_link_round() -> Result<(), String> {
         moves_within(&demo.observer, LONG),
         "the arm does not move on a plain link".into(),
     )?;
-    let calm = demo.statuses(unix_ns());
+    let calm = every_status(&demo)?;
     // 15 000 points at 10 Hz are 14 Mbit/s: a third can cross.
     let slow = condition("0.2 %, 5 Mbit/s", 0, 0.002, Some(5.0));
     let measured = demo.measure(&slow, Duration::from_secs(4), Duration::from_secs(12));
@@ -1279,15 +1286,7 @@ fn slow_link_round() -> Result<(), String> {
         moves_within(&demo.observer, RECOVERY),
         format!("the arm does not move within {RECOVERY:?} once the link is plain again"),
     )?;
-    let settled = demo.statuses_heard(unix_ns());
-    let silent: Vec<&&str> = COUNTED
-        .iter()
-        .filter(|n| !settled.contains_key(**n))
-        .collect();
-    check(
-        silent.is_empty(),
-        format!("no status from {silent:?} once the link is plain again"),
-    )?;
+    let settled = every_status(&demo)?;
     let change = |node: &str, counter: &str| {
         settled[node].counter(counter) as i64 - calm[node].counter(counter) as i64
     };
