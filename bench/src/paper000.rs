@@ -12,7 +12,7 @@ use anyhow::Result;
 use shroud_sim::MovingSpheres;
 use shroud_surrogate::floor::Floor;
 use shroud_surrogate::{
-    fit_curve_above, fit_curve_by_trial_and_error, FitOptions, Histogram, SurrogateFitter,
+    fit_curve_above, fit_curve_by_trial_and_error, FitOptions, Histogram, Sides, SurrogateFitter,
     Tightness,
 };
 use std::hint::black_box;
@@ -52,6 +52,10 @@ struct Timings {
     default_ms: f64,
     plain_ms: f64,
     tight_ms: f64,
+    /// Both sides (`--sides sandwich`), default tightness, cold.
+    sandwich_ms: f64,
+    /// A fresh fitter on each frame of the stream the warm fitter sees.
+    cold_stream_ms: f64,
     warm_ms: f64,
 }
 
@@ -64,9 +68,10 @@ impl Timings {
     }
 }
 
-/// Median cold-fit times over `configs x runs` fits, plus a warm-started
-/// stream, and the floor's median over a run before each default and plain fit.
-fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
+/// Median cold-fit times over `configs x runs` fits (sandwiches too if asked),
+/// plus a stream fitted warm and cold, and the floor's median over a run
+/// before each default, plain and sandwich fit.
+fn measure(points: usize, grid: usize, args: &BenchArgs, sandwich: bool) -> Result<Timings> {
     let (configs, runs) = if args.quick {
         (2, 3)
     } else {
@@ -78,21 +83,29 @@ fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
         tightness,
         ..Default::default()
     };
-    let (mut default, mut plain, mut tight, mut warm) = (vec![], vec![], vec![], vec![]);
+    let (mut default, mut plain, mut tight, mut sandwiches) = (vec![], vec![], vec![], vec![]);
+    let (mut warm, mut cold_stream) = (vec![], vec![]);
     let (mut floor, mut floor_ms) = (Floor::new(grid), vec![]);
     for config in 0..configs {
         let pts = cloud(points, config)?;
         black_box(floor.cell_maxima(&pts));
-        for (tightness, out) in [
-            (Tightness::Lowered, &mut default),
-            (Tightness::Plain, &mut plain),
+        for (tightness, sides, out) in [
+            (Tightness::Lowered, Sides::Upper, &mut default),
+            (Tightness::Plain, Sides::Upper, &mut plain),
+            (Tightness::Lowered, Sides::Sandwich, &mut sandwiches),
         ] {
+            if sides == Sides::Sandwich && !sandwich {
+                continue;
+            }
             for _ in 0..runs {
                 let ((), ms) = timed(|| {
                     black_box(floor.cell_maxima(black_box(&pts)));
                 });
                 floor_ms.push(ms);
-                let mut fitter = SurrogateFitter::new(options(tightness))?;
+                let mut fitter = SurrogateFitter::new(FitOptions {
+                    sides,
+                    ..options(tightness)
+                })?;
                 let (fit, ms) = timed(|| fitter.fit(&pts));
                 certified(&fit?)?;
                 out.push(ms);
@@ -104,39 +117,73 @@ fn measure(points: usize, grid: usize, args: &BenchArgs) -> Result<Timings> {
             certified(&fit?)?;
             tight.push(ms);
         }
-        warm.extend(warm_stream(points, grid, config, runs)?);
+        let stream = fit_stream(points, grid, config, runs)?;
+        warm.extend(stream.warm);
+        cold_stream.extend(stream.cold);
     }
     Ok(Timings {
         floor_ms: median(&mut floor_ms),
         default_ms: median(&mut default),
         plain_ms: median(&mut plain),
         tight_ms: median(&mut tight),
+        sandwich_ms: median(&mut sandwiches),
+        cold_stream_ms: median(&mut cold_stream),
         warm_ms: median(&mut warm),
     })
 }
 
-/// A 30 Hz stream of frames fitted by one warm-started fitter.
-fn warm_stream(points: usize, grid: usize, config: usize, frames: usize) -> Result<Vec<f64>> {
+/// Fit times of one stream, per frame after the first.
+struct Stream {
+    warm: Vec<f64>,
+    cold: Vec<f64>,
+}
+
+/// A 30 Hz stream of frames fitted by one warm-started fitter and, on the same
+/// frames, by a fresh fitter each (the two take turns at being first on a
+/// frame, so that neither always meets the new cloud out of cache).
+fn fit_stream(points: usize, grid: usize, config: usize, frames: usize) -> Result<Stream> {
     let scene = MovingSpheres {
         points,
         seed: 1000 + config as u64,
         ..Default::default()
     };
-    let mut fitter = SurrogateFitter::new(FitOptions {
+    let options = FitOptions {
         cols: grid,
         rows: grid,
         ..Default::default()
-    })?;
-    let mut times = Vec::with_capacity(frames);
+    };
+    let mut fitter = SurrogateFitter::new(options.clone())?;
+    let mut stream = Stream {
+        warm: Vec::with_capacity(frames),
+        cold: Vec::with_capacity(frames),
+    };
     for frame in 0..=frames {
         let pts = scene.generate(0.37 * config as f64 + frame as f64 / 30.0)?;
-        let (fit, ms) = timed(|| fitter.fit(&pts));
-        certified(&fit?)?;
+        let mut warm = || -> Result<f64> {
+            let (fit, ms) = timed(|| fitter.fit(&pts));
+            certified(&fit?)?;
+            Ok(ms)
+        };
+        let cold = || -> Result<f64> {
+            let mut fresh = SurrogateFitter::new(options.clone())?;
+            let (fit, ms) = timed(|| fresh.fit(&pts));
+            certified(&fit?)?;
+            Ok(ms)
+        };
+        let (warm_ms, cold_ms) = if frame % 2 == 0 {
+            let warm_ms = warm()?;
+            (warm_ms, cold()?)
+        } else {
+            let cold_ms = cold()?;
+            (warm()?, cold_ms)
+        };
+        // The first frame warms nothing: both fits are cold.
         if frame > 0 {
-            times.push(ms);
+            stream.warm.push(warm_ms);
+            stream.cold.push(cold_ms);
         }
     }
-    Ok(times)
+    Ok(stream)
 }
 
 fn certified(s: &shroud_surrogate::Surrogate) -> Result<()> {
@@ -165,11 +212,12 @@ fn table1(args: &BenchArgs) -> Result<()> {
     println!("## Table 1: time vs N, 20 x 20, certification included\n");
     println!("| N | paper (ms, P4 2.4 GHz) | floor (ms) | shroud default (ms) | shroud --plain (ms) | shroud --tight (ms) | warm stream (ms) | default / floor | plain / floor | tight / floor | warm / floor | points/s (default) | speed-up vs paper |");
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let mut sides_and_streams = Vec::new();
     for (n, paper) in TABLE1 {
         if args.quick && n > 30_000 {
             continue;
         }
-        let t = measure(n, 20, args)?;
+        let t = measure(n, 20, args, true)?;
         println!(
             "| {}K | {paper} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |{} {:.0}M | {:.0}x |",
             n / 1000,
@@ -182,9 +230,35 @@ fn table1(args: &BenchArgs) -> Result<()> {
             n as f64 / t.default_ms / 1e3,
             paper / t.default_ms,
         );
+        sides_and_streams.push((n, t));
     }
     println!();
+    print_sides_and_streams(&sides_and_streams);
     Ok(())
+}
+
+/// Table 1's sandwiches against one side, and its warm streams against cold
+/// fits of the same frames.
+fn print_sides_and_streams(rows: &[(usize, Timings)]) {
+    println!(
+        "### Sandwiches and streams, 20 x 20
+"
+    );
+    println!("| N | default, one side (ms) | sandwich (ms) | sandwich / one side | stream, cold fits (ms) | stream, warm fitter (ms) | warm / cold |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|");
+    for (n, t) in rows {
+        println!(
+            "| {}K | {:.2} | {:.2} | {:.2}x | {:.2} | {:.2} | {:.2}x |",
+            n / 1000,
+            t.default_ms,
+            t.sandwich_ms,
+            t.sandwich_ms / t.default_ms,
+            t.cold_stream_ms,
+            t.warm_ms,
+            t.warm_ms / t.cold_stream_ms,
+        );
+    }
+    println!();
 }
 
 fn table2(args: &BenchArgs) -> Result<()> {
@@ -197,7 +271,7 @@ fn table2(args: &BenchArgs) -> Result<()> {
         if args.quick && n > 20 {
             continue;
         }
-        let t = measure(30_000, n, args)?;
+        let t = measure(30_000, n, args, false)?;
         println!(
             "| {n} | {paper} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |{}",
             t.floor_ms,

@@ -69,3 +69,57 @@ pub struct FitStats {
     /// Whether the fit was warm-started from a previous frame.
     pub warm_started: bool,
 }
+
+impl FitStats {
+    /// Adds what fitting one side of the surrogate counted (its candidates,
+    /// solves, reselections, raises and tightening moves).
+    pub fn add_side(&mut self, side: &FitStats) {
+        self.candidates += side.candidates;
+        self.curve_solves.merge(&side.curve_solves);
+        self.column_solves.merge(&side.column_solves);
+        self.reselections += side.reselections;
+        self.raised_intervals += side.raised_intervals;
+        self.tightening_moves += side.tightening_moves;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_side_adds_its_counts_and_histograms() {
+        let mut side = FitStats {
+            candidates: 3,
+            reselections: 2,
+            raised_intervals: 1,
+            tightening_moves: 5,
+            ..Default::default()
+        };
+        side.curve_solves.add(4);
+        side.column_solves.add(2);
+        let mut total = FitStats {
+            points: 10,
+            uncrossed_coefficients: 7,
+            warm_started: true,
+            ..side.clone()
+        };
+        total.add_side(&side);
+        assert_eq!(
+            (total.candidates, total.reselections, total.raised_intervals),
+            (6, 4, 2)
+        );
+        assert_eq!(total.tightening_moves, 10);
+        assert_eq!(total.curve_solves.counts, vec![0, 0, 0, 0, 2]);
+        assert_eq!(total.column_solves.counts, vec![0, 0, 2]);
+        // What belongs to the whole fit is not a side's to add.
+        assert_eq!(
+            (
+                total.points,
+                total.uncrossed_coefficients,
+                total.warm_started
+            ),
+            (10, 7, true)
+        );
+    }
+}

@@ -1,7 +1,8 @@
 //! How far the fit is from the floor (issue 27): median milliseconds of the
 //! default fit, `--plain` and `--tight` (exactly what `shroud fit` means by
 //! them: `nodes/src/args/surrogate.rs`), each also as a multiple of the floor
-//! measured in the same run on the same clouds.
+//! measured in the same run on the same clouds, and of the default sandwich
+//! (`--sides sandwich`) as a multiple of the default fit of one side.
 //!
 //! The floor is `shroud_surrogate::floor::Floor`, the one `shroud-bench
 //! surrogate` times too: the bounding box of the points' `(x, y)`, then the
@@ -17,14 +18,15 @@
 //! fit_floor [runs] [configs]`: `runs` warm timings per cloud and kind
 //! (default 21), over `configs` clouds (default 3). `RAYON_NUM_THREADS` sets
 //! the fits' threads; the floor always uses one. `fit_floor profile N g [reps]`
-//! only runs `reps` default fits of N points on a g x g grid (for callgrind);
+//! only runs `reps` default fits of N points on a g x g grid (for callgrind;
+//! a last argument `sandwich` fits both sides);
 //! `fit_floor fingerprint` prints a hash of every fit's output (surfaces,
 //! certificates, statistics) per configuration, to show that a change of the
 //! fitter's speed left its results bit for bit the same.
 
 use shroud_graph::metrics::{live_bytes, peak_bytes, reset_peak, CountingAllocator};
 use shroud_surrogate::floor::Floor;
-use shroud_surrogate::{FitOptions, Surrogate, SurrogateFitter, Tightness};
+use shroud_surrogate::{FitOptions, Sides, Surrogate, SurrogateFitter, Tightness};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -33,7 +35,7 @@ use std::time::Instant;
 static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 /// The kinds timed, in the order they are printed.
-const KINDS: [&str; 4] = ["floor", "default", "plain", "tight"];
+const KINDS: [&str; 5] = ["floor", "default", "plain", "tight", "sandwich"];
 
 /// The configurations of issue 27: (points, grid).
 const CONFIGS: [(usize, usize); 5] = [
@@ -81,8 +83,17 @@ fn time_kind(k: usize, points: &[[f32; 3]], floor: &mut Floor) -> f64 {
             black_box(floor.cell_maxima(black_box(points)));
         }
         _ => {
-            let tightness = [Tightness::Lowered, Tightness::Plain, Tightness::Optimal][k - 1];
-            let fit = SurrogateFitter::new(options(grid, tightness))
+            let tightness = [Tightness::Lowered, Tightness::Plain, Tightness::Optimal][(k - 1) % 3];
+            let sides = if k == 4 {
+                Sides::Sandwich
+            } else {
+                Sides::Upper
+            };
+            let options = FitOptions {
+                sides,
+                ..options(grid, tightness)
+            };
+            let fit = SurrogateFitter::new(options)
                 .expect("fitter")
                 .fit(black_box(points))
                 .expect("fit");
@@ -113,8 +124,8 @@ fn peak_mb(points: &[[f32; 3]], grid: usize) -> f64 {
 
 /// Medians per kind over `configs` clouds and `runs` interleaved runs each (the
 /// kinds take turns, so a slow spell of the machine hits all of them alike).
-fn measure(points: usize, grid: usize, runs: usize, configs: usize) -> [f64; 4] {
-    let mut times: [Vec<f64>; 4] = Default::default();
+fn measure(points: usize, grid: usize, runs: usize, configs: usize) -> [f64; 5] {
+    let mut times: [Vec<f64>; 5] = Default::default();
     let mut floor = Floor::new(grid);
     for config in 0..configs {
         let pts = cloud(points, config);
@@ -131,11 +142,16 @@ fn measure(points: usize, grid: usize, runs: usize, configs: usize) -> [f64; 4] 
     times.map(|mut t| median(&mut t))
 }
 
-/// `reps` default fits and nothing else, for a profiler.
-fn profile(points: usize, grid: usize, reps: usize) {
+/// `reps` default fits (of one side or of a sandwich) and nothing else, for a
+/// profiler.
+fn profile(points: usize, grid: usize, reps: usize, sides: Sides) {
     let pts = cloud(points, 0);
     for _ in 0..reps {
-        let fit = SurrogateFitter::new(options(grid, Tightness::Lowered))
+        let options = FitOptions {
+            sides,
+            ..options(grid, Tightness::Lowered)
+        };
+        let fit = SurrogateFitter::new(options)
             .expect("fitter")
             .fit(&pts)
             .expect("fit");
@@ -151,9 +167,9 @@ fn fingerprint() {
         let pts = cloud(points, 1);
         let mut hasher = DefaultHasher::new();
         for (tightness, sides) in [
-            (Tightness::Lowered, shroud_surrogate::Sides::Upper),
-            (Tightness::Plain, shroud_surrogate::Sides::Upper),
-            (Tightness::Lowered, shroud_surrogate::Sides::Sandwich),
+            (Tightness::Lowered, Sides::Upper),
+            (Tightness::Plain, Sides::Upper),
+            (Tightness::Lowered, Sides::Sandwich),
         ] {
             let options = FitOptions {
                 sides,
@@ -178,7 +194,13 @@ fn main() {
         .collect();
     if std::env::args().nth(1).as_deref() == Some("profile") {
         let at = |i: usize, default: usize| args.get(i).copied().unwrap_or(default);
-        return profile(at(0, 300_000), at(1, 20), at(2, 3));
+        let sandwich = std::env::args().any(|a| a == "sandwich");
+        let sides = if sandwich {
+            Sides::Sandwich
+        } else {
+            Sides::Upper
+        };
+        return profile(at(0, 300_000), at(1, 20), at(2, 3), sides);
     }
     let runs = args.first().copied().unwrap_or(21).max(1);
     let configs = args.get(1).copied().unwrap_or(3).max(1);
@@ -186,22 +208,24 @@ fn main() {
     println!(
         "median ms of {runs} warm runs x {configs} clouds (moving spheres); fits: {threads} rayon threads, floor: 1 thread"
     );
-    println!("| N | grid | floor | default | plain | tight | default/floor | plain/floor | tight/floor | peak MB (default) | cloud MB |");
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| N | grid | floor | default | plain | tight | sandwich | default/floor | plain/floor | tight/floor | sandwich/default | peak MB (default) | cloud MB |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut default_30k = Vec::new();
     for (points, grid) in CONFIGS {
         let m = measure(points, grid, runs, configs);
         let peak = peak_mb(&cloud(points, 0), grid);
         println!(
-            "| {}K | {grid}x{grid} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2}x | {:.2}x | {:.2}x | {:.2} | {:.2} |",
+            "| {}K | {grid}x{grid} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2}x | {:.2}x | {:.2}x | {:.2}x | {:.2} | {:.2} |",
             points / 1000,
             m[0],
             m[1],
             m[2],
             m[3],
+            m[4],
             m[1] / m[0],
             m[2] / m[0],
             m[3] / m[0],
+            m[4] / m[1],
             peak,
             (points * 12) as f64 / 1e6,
         );

@@ -17,9 +17,10 @@ pub use padded::PaddedSurface;
 use super::error::FitError;
 use super::model::{Certificate, Domain, Side};
 use crate::DomainLocate;
-use pass::Pass;
+use pass::{Measured, Pass};
 use shroud_geometry::math::Frame;
 use shroud_geometry::spline::UniformCubicSurface;
+use tally::Tally;
 
 /// Correction rounds before the fallback (a uniform shift). One round fixes every
 /// point short of rounding trouble; the rest are insurance.
@@ -34,11 +35,60 @@ pub fn certify_surface(
     surface: &mut UniformCubicSurface,
     side: Side,
 ) -> Result<Certificate, FitError> {
-    let pass = Pass::new(points, domain.locator(frame), surface, side);
+    let mut certificates = certify_sides(points, frame, domain, &mut [(side, surface)])?;
+    certificates.pop().ok_or(FitError::NoSamples)
+}
+
+/// [`certify_surface`] for every side of a sandwich at once: the sides share a
+/// grid, so one look at the cloud locates and weighs each point once and
+/// measures it against both sides (the certificates are those of separate
+/// certifications, bit for bit). Certificates come in the order of `sides`.
+pub(crate) fn certify_sides(
+    points: &[[f32; 3]],
+    frame: &Frame,
+    domain: &Domain,
+    sides: &mut [(Side, &mut UniformCubicSurface)],
+) -> Result<Vec<Certificate>, FitError> {
+    let Some((_, first)) = sides.first() else {
+        return Ok(Vec::new());
+    };
+    let grid = (first.cols, first.rows);
+    if sides.iter().any(|(_, s)| (s.cols, s.rows) != grid) {
+        return sides
+            .iter_mut()
+            .map(|(side, surface)| certify_surface(points, frame, domain, surface, *side))
+            .collect();
+    }
+    let pass = Pass::new(points, domain.locator(frame), first);
     // The tile of every point, so that a correction finds its points again
     // without locating the whole cloud.
     let mut tile_of = vec![0u16; points.len()];
-    let mut tally = pass.measure(surface, Some(&mut tile_of));
+    let measured: Vec<Measured> = sides
+        .iter()
+        .map(|(side, surface)| Measured {
+            surface,
+            side: *side,
+        })
+        .collect();
+    let tallies = pass.measure(&measured, Some(&mut tile_of));
+    sides
+        .iter_mut()
+        .zip(tallies)
+        .map(|((side, surface), tally)| correct(&pass, &tile_of, frame, surface, *side, tally))
+        .collect()
+}
+
+/// Corrects `surface` until no point of the first look's `tally` is on the
+/// wrong side, measuring again only the points of the tiles a correction
+/// touched.
+fn correct(
+    pass: &Pass,
+    tile_of: &[u16],
+    frame: &Frame,
+    surface: &mut UniformCubicSurface,
+    side: Side,
+    mut tally: Tally,
+) -> Result<Certificate, FitError> {
     let mut corrected = 0u64;
     for _ in 0..MAX_ROUNDS {
         if tally.wrong.is_empty() {
@@ -48,7 +98,7 @@ pub fn certify_surface(
         let before = PaddedSurface::new(surface);
         let mut touched = vec![false; pass.tiles.len()];
         raise::raise_wrong_points(
-            points,
+            pass.points,
             &pass.locator,
             surface,
             side,
@@ -56,7 +106,8 @@ pub fn certify_surface(
             &pass.tiles,
             &mut touched,
         )?;
-        let revised = pass.remeasure(&before, surface, &tile_of, &touched);
+        let after = Measured { surface, side };
+        let revised = pass.remeasure(&before, &after, tile_of, &touched);
         tally.revise(&touched, revised);
     }
     // Never seen: a uniform shift by twice the worst excess, then a full check.
@@ -68,10 +119,11 @@ pub fn certify_surface(
     let shift = side.sign() * (2.0 * worst + 64.0 * f64::EPSILON * (1.0 + scale));
     surface.coefficients.iter_mut().for_each(|c| *c += shift);
     corrected += tally.wrong.len() as u64;
-    let tally = pass.measure(surface, None);
-    match tally.wrong.len() {
-        0 => Ok(tally.certificate(frame, side, corrected)),
-        n => Err(FitError::Uncertifiable(n)),
+    let tally = pass.measure(&[Measured { surface, side }], None);
+    match tally.first().map(|t| t.wrong.len()) {
+        Some(0) => Ok(tally[0].certificate(frame, side, corrected)),
+        Some(n) => Err(FitError::Uncertifiable(n)),
+        None => Err(FitError::NoSamples),
     }
 }
 
@@ -91,8 +143,12 @@ pub(crate) fn secure_points(
         .iter()
         .filter_map(|&i| points.get(i as usize).copied())
         .collect();
-    let pass = Pass::new(&subset, domain.locator(frame), surface, side);
-    let wrong = pass.measure(surface, None).wrong;
+    let pass = Pass::new(&subset, domain.locator(frame), surface);
+    let wrong = pass
+        .measure(&[Measured { surface, side }], None)
+        .pop()
+        .map(|tally| tally.wrong)
+        .unwrap_or_default();
     if !wrong.is_empty() {
         let mut touched = vec![false; pass.tiles.len()];
         raise::raise_wrong_points(
@@ -190,6 +246,52 @@ mod tests {
             unchanged >= 13 * 13 - 2,
             "{unchanged} coefficients unchanged"
         );
+    }
+
+    /// Both sides of a sandwich certified in one look at the cloud get exactly
+    /// the certificates and corrections of two separate certifications.
+    #[test]
+    fn sides_certified_together_match_sides_certified_apart() {
+        let domain = Domain {
+            u_min: -3.0,
+            v_min: -2.0,
+            u_step: 0.5,
+            v_step: 0.5,
+            cols: 9,
+            rows: 9,
+        };
+        let points: Vec<[f32; 3]> = (0..30_000)
+            .map(|i| {
+                let (x, y) = ((i % 173) as f32 * 0.02, (i / 173) as f32 * 0.0231);
+                [
+                    x,
+                    y,
+                    0.4 * (x * 1.9).sin() + 0.2 * (y * 2.3).cos() + 0.05 * (i % 7) as f32,
+                ]
+            })
+            .collect();
+        let frame = down();
+        // Surfaces a little inside the cloud on both sides: corrections happen.
+        let upper = UniformCubicSurface::constant(9, 9, 0.5).unwrap();
+        let lower = UniformCubicSurface::constant(9, 9, -0.3).unwrap();
+        let (mut up_apart, mut low_apart) = (upper.clone(), lower.clone());
+        let apart = [
+            certify_surface(&points, &frame, &domain, &mut up_apart, Side::Upper).unwrap(),
+            certify_surface(&points, &frame, &domain, &mut low_apart, Side::Lower).unwrap(),
+        ];
+        let (mut up, mut low) = (upper, lower);
+        let together = certify_sides(
+            &points,
+            &frame,
+            &domain,
+            &mut [(Side::Upper, &mut up), (Side::Lower, &mut low)],
+        )
+        .unwrap();
+        assert!(apart
+            .iter()
+            .all(|c| c.corrected_points > 0 && c.violations == 0));
+        assert_eq!(together, apart);
+        assert_eq!((up, low), (up_apart, low_apart));
     }
 
     #[test]

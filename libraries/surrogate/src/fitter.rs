@@ -4,7 +4,7 @@
 
 use super::bins::{bin_points, SubCellMaxima, MAX_SUB_CELLS};
 use super::candidates::candidates_of;
-use super::certify::{certify_surface, secure_points};
+use super::certify::{certify_sides, secure_points};
 use super::error::FitError;
 use super::footprint::domain_of_cloud;
 use super::model::{Domain, SafeSurface, Side, Surrogate};
@@ -16,6 +16,7 @@ use super::uncross::uncross;
 use crate::DomainLocate;
 use crate::FitStats;
 use glam::DVec3;
+use rayon::prelude::*;
 use shroud_geometry::math::Frame;
 use shroud_geometry::spline::UniformCubicSurface;
 
@@ -34,7 +35,8 @@ pub const MAX_GRID: usize = 1024;
 pub struct SurrogateFitter {
     options: FitOptions,
     frame: Frame,
-    /// Per side (upper, lower) and orientation (along s, along t).
+    /// Per side, in the order of `Sides::list` (a fitter's sides never
+    /// change), and orientation (along s, along t).
     warm: [[ReductionWarmStart; 2]; 2],
     frames: u64,
 }
@@ -111,12 +113,32 @@ impl SurrogateFitter {
             let (s, t, _) = locator.locate_f32(&points[i as usize]);
             (s, t)
         };
-        let mut surfaces = Vec::with_capacity(2);
-        for fine in &binning.maxima {
-            let coarse = (check > 1).then(|| fine.coarsen(check));
-            let maxima = coarse.as_ref().unwrap_or(fine);
-            let surface = self.fit_side(maxima, &param_of, &trim, sub, &mut stats)?;
-            surfaces.push((fine.side, surface));
+        // The sides of a sandwich are independent until un-crossing: each is
+        // fitted on its own core (their grid work is mostly serial).
+        let options = &self.options;
+        let jobs: Vec<(&SubCellMaxima, &mut [ReductionWarmStart; 2])> =
+            binning.maxima.iter().zip(self.warm.iter_mut()).collect();
+        let fitted: Vec<Result<(Side, UniformCubicSurface, FitStats), FitError>> = jobs
+            .into_par_iter()
+            .map(|(fine, warm)| {
+                let coarse = (check > 1).then(|| fine.coarsen(check));
+                let maxima = coarse.as_ref().unwrap_or(fine);
+                let mut side_stats = FitStats::default();
+                let job = SideJob {
+                    options,
+                    param_of: &param_of,
+                    trim: &trim,
+                    sub,
+                };
+                let surface = job.fit(maxima, warm, &mut side_stats)?;
+                Ok((fine.side, surface, side_stats))
+            })
+            .collect();
+        let mut surfaces = Vec::with_capacity(fitted.len());
+        for side in fitted {
+            let (side, surface, side_stats) = side?;
+            stats.add_side(&side_stats);
+            surfaces.push((side, surface));
         }
         if let [(Side::Upper, up), (Side::Lower, low)] = surfaces.as_mut_slice() {
             stats.uncrossed_coefficients = uncross(up, low, &trim);
@@ -129,9 +151,8 @@ impl SurrogateFitter {
             lower: None,
             stats,
         };
-        for ((side, surface), fine) in surfaces.into_iter().zip(&binning.maxima) {
-            let safe = certify_side(points, &frame, &domain, surface, side, fine)?;
-            match side {
+        for safe in secure_and_certify(points, &frame, &domain, surfaces, &binning.maxima)? {
+            match safe.side {
                 Side::Upper => result.upper = Some(safe),
                 Side::Lower => result.lower = Some(safe),
             }
@@ -139,20 +160,27 @@ impl SurrogateFitter {
         self.frames += 1;
         Ok(result)
     }
+}
 
+/// What fitting one side needs besides its candidates and warm start.
+struct SideJob<'a> {
+    options: &'a FitOptions,
+    param_of: &'a (dyn Fn(u32) -> (f64, f64) + Sync),
+    trim: &'a TrimMask,
+    sub: usize,
+}
+
+impl SideJob<'_> {
     /// Section 6's reduction on one side's candidates (both orientations averaged
     /// if asked), then the tightening; the surface comes back in real heights.
-    fn fit_side(
-        &mut self,
+    fn fit(
+        &self,
         maxima: &SubCellMaxima,
-        param_of: &(dyn Fn(u32) -> (f64, f64) + Sync),
-        trim: &TrimMask,
-        sub: usize,
+        warm: &mut [ReductionWarmStart; 2],
         stats: &mut FitStats,
     ) -> Result<UniformCubicSurface, FitError> {
-        let o = &self.options;
+        let (o, param_of) = (self.options, self.param_of);
         let side = maxima.side;
-        let warm = &mut self.warm[side_index(side)];
         let mut coefficients = fit_by_reduction(
             maxima,
             Orientation::AlongS,
@@ -178,6 +206,7 @@ impl SurrogateFitter {
         let mut surface =
             UniformCubicSurface::new(o.cols, o.rows, coefficients).ok_or(FitError::NoSamples)?;
         let candidates = candidates_of(maxima, param_of);
+        let (trim, sub) = (self.trim, self.sub);
         stats.tightening_moves += match o.tightness {
             Tightness::Plain => 0,
             Tightness::Lowered => {
@@ -196,26 +225,44 @@ impl SurrogateFitter {
     }
 }
 
-/// Secures the check points (the sub-cell maxima, a few thousand points: what they
-/// catch, certification need not correct with another look at the cloud), then
-/// certifies every point.
-fn certify_side(
+/// Secures each side's check points (its sub-cell maxima, a few thousand
+/// points: what they catch, certification need not correct with another look
+/// at the cloud), then certifies every point against every side in one look.
+fn secure_and_certify(
     points: &[[f32; 3]],
     frame: &Frame,
     domain: &Domain,
-    mut surface: UniformCubicSurface,
-    side: Side,
-    check: &SubCellMaxima,
-) -> Result<SafeSurface, FitError> {
-    let check_points: Vec<u32> = check.occupied().map(|(_, _, index)| index).collect();
-    let secured = secure_points(points, &check_points, frame, domain, &mut surface, side)?;
-    let mut certificate = certify_surface(points, frame, domain, &mut surface, side)?;
-    certificate.corrected_points += secured;
-    Ok(SafeSurface {
-        side,
-        surface,
-        certificate,
-    })
+    mut surfaces: Vec<(Side, UniformCubicSurface)>,
+    checks: &[SubCellMaxima],
+) -> Result<Vec<SafeSurface>, FitError> {
+    let mut secured = Vec::with_capacity(surfaces.len());
+    for ((side, surface), check) in surfaces.iter_mut().zip(checks) {
+        let check_points: Vec<u32> = check.occupied().map(|(_, _, index)| index).collect();
+        secured.push(secure_points(
+            points,
+            &check_points,
+            frame,
+            domain,
+            surface,
+            *side,
+        )?);
+    }
+    let mut sides: Vec<(Side, &mut UniformCubicSurface)> =
+        surfaces.iter_mut().map(|(side, s)| (*side, s)).collect();
+    let certificates = certify_sides(points, frame, domain, &mut sides)?;
+    Ok(surfaces
+        .into_iter()
+        .zip(certificates)
+        .zip(secured)
+        .map(|(((side, surface), mut certificate), secured)| {
+            certificate.corrected_points += secured;
+            SafeSurface {
+                side,
+                surface,
+                certificate,
+            }
+        })
+        .collect())
 }
 
 /// How much finer than the candidates' sub-cells the check points' sub-cells are:
@@ -230,13 +277,6 @@ fn check_factor(points: usize, cells: usize, sub: usize) -> usize {
         2
     } else {
         1
-    }
-}
-
-fn side_index(side: Side) -> usize {
-    match side {
-        Side::Upper => 0,
-        Side::Lower => 1,
     }
 }
 

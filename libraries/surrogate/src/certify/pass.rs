@@ -1,7 +1,7 @@
 //! One look at the points of a certification: every point (or those of some
-//! tiles) measured against a surface, in parallel parts whose split depends on
-//! the number of points only, so sums come out the same however rayon schedules
-//! the parts.
+//! tiles) measured against one surface or both sides of a sandwich, in parallel
+//! parts whose split depends on the number of points only, so sums come out the
+//! same however rayon schedules the parts.
 
 use super::gaps::GapBlock;
 use super::padded::PaddedSurface;
@@ -16,39 +16,45 @@ use shroud_geometry::spline::UniformCubicSurface;
 const MIN_PART: usize = 8 * 1024;
 const MAX_PARTS: usize = 8;
 
-/// What every look at the points of one certification shares.
+/// What every look at the points of one certification shares. The sides of a
+/// sandwich share a grid, so they share the points' locations and basis weights
+/// too: one look locates and weighs each point once and measures it against
+/// every side (most of a look's work is locating and weighing).
 pub(super) struct Pass<'a> {
-    points: &'a [[f32; 3]],
+    pub points: &'a [[f32; 3]],
     pub locator: Locator,
-    side: Side,
     pub tiles: TileGrid,
     part_len: usize,
 }
 
+/// A surface being certified and the side of the cloud it must stay on.
+pub(super) struct Measured<'s> {
+    pub surface: &'s UniformCubicSurface,
+    pub side: Side,
+}
+
 impl<'a> Pass<'a> {
     /// Tiles follow the surface's cells (the domain only places the points).
-    pub fn new(
-        points: &'a [[f32; 3]],
-        locator: Locator,
-        surface: &UniformCubicSurface,
-        side: Side,
-    ) -> Self {
+    pub fn new(points: &'a [[f32; 3]], locator: Locator, surface: &UniformCubicSurface) -> Self {
         let parts = points.len().div_ceil(MIN_PART).clamp(1, MAX_PARTS);
         let part_len = points.len().div_ceil(parts).max(1);
         let (cells_s, cells_t) = surface.cells();
         Self {
             points,
             locator,
-            side,
             tiles: TileGrid::new(cells_s, cells_t, points.len(), parts),
             part_len,
         }
     }
 
-    /// Measures every point; records each point's tile in `tile_of` if given.
-    pub fn measure(&self, surface: &UniformCubicSurface, tile_of: Option<&mut [u16]>) -> Tally {
-        let padded = PaddedSurface::new(surface);
-        let parts: Vec<Tally> = match tile_of {
+    /// Measures every point against each surface (one tally each, in order);
+    /// records each point's tile in `tile_of` if given.
+    pub fn measure(&self, surfaces: &[Measured], tile_of: Option<&mut [u16]>) -> Vec<Tally> {
+        let padded: Vec<(PaddedSurface, f64)> = surfaces
+            .iter()
+            .map(|m| (PaddedSurface::new(m.surface), m.side.sign()))
+            .collect();
+        let parts: Vec<Vec<Tally>> = match tile_of {
             Some(tile_of) => self
                 .points
                 .par_chunks(self.part_len)
@@ -67,25 +73,35 @@ impl<'a> Pass<'a> {
                 })
                 .collect(),
         };
-        self.combine(parts)
+        (0..surfaces.len())
+            .map(|k| self.combine(parts.iter().map(|part| &part[k])))
+            .collect()
     }
 
     fn measure_part(
         &self,
-        padded: &PaddedSurface,
+        surfaces: &[(PaddedSurface, f64)],
         points: &[[f32; 3]],
         first: usize,
         mut tile_of: Option<&mut [u16]>,
-    ) -> Tally {
-        let sign = self.side.sign();
-        let mut tally = Tally::new(self.tiles.len());
+    ) -> Vec<Tally> {
+        let mut tallies: Vec<Tally> = surfaces
+            .iter()
+            .map(|_| Tally::new(self.tiles.len()))
+            .collect();
+        let Some((grid, _)) = surfaces.first() else {
+            return tallies;
+        };
         let mut block = GapBlock::default();
         for (b, chunk) in points.chunks(BLOCK).enumerate() {
-            block.locate(chunk, &self.locator, padded, &self.tiles);
-            block.weigh(padded);
-            block.measure(padded, sign);
+            // Location and weights depend on the grid only, which the sides share.
+            block.locate(chunk, &self.locator, grid, &self.tiles);
+            block.weigh(grid);
             let base = first + b * BLOCK;
-            tally.add_block(&block, padded, |i| (base + i) as u32);
+            for ((padded, sign), tally) in surfaces.iter().zip(&mut tallies) {
+                block.measure(padded, *sign);
+                tally.add_block(&block, padded, |i| (base + i) as u32);
+            }
             if let Some(tile_of) = tile_of.as_deref_mut() {
                 // TileGrid keeps tile numbers below 2^16.
                 let out = &mut tile_of[b * BLOCK..b * BLOCK + chunk.len()];
@@ -94,7 +110,7 @@ impl<'a> Pass<'a> {
                     .for_each(|(o, &t)| *o = t as u16);
             }
         }
-        tally
+        tallies
     }
 
     /// Measures again, against `after`, the points of the `touched` tiles (found
@@ -103,25 +119,28 @@ impl<'a> Pass<'a> {
     pub fn remeasure(
         &self,
         before: &PaddedSurface,
-        after: &UniformCubicSurface,
+        after: &Measured,
         tile_of: &[u16],
         touched: &[bool],
     ) -> Tally {
-        let after = PaddedSurface::new(after);
+        let sign = after.side.sign();
+        let after = PaddedSurface::new(after.surface);
         let parts: Vec<Tally> = tile_of
             .par_chunks(self.part_len)
             .enumerate()
             .map(|(part, tile_of)| {
-                self.remeasure_part(before, &after, part * self.part_len, tile_of, touched)
+                let first = part * self.part_len;
+                self.remeasure_part(before, &after, sign, first, tile_of, touched)
             })
             .collect();
-        self.combine(parts)
+        self.combine(parts.iter())
     }
 
     fn remeasure_part(
         &self,
         before: &PaddedSurface,
         after: &PaddedSurface,
+        sign: f64,
         first: usize,
         tile_of: &[u16],
         touched: &[bool],
@@ -138,12 +157,14 @@ impl<'a> Pass<'a> {
             batch.index[len % BLOCK] = (first + i) as u32;
             len += usize::from(touched[tile as usize]);
             if len == BLOCK {
-                self.remeasure_batch(before, after, &mut batch, len, &mut block, &mut tally);
+                let batch = (&mut batch, len);
+                self.remeasure_batch(before, after, sign, batch, &mut block, &mut tally);
                 len = 0;
             }
         }
         if len > 0 {
-            self.remeasure_batch(before, after, &mut batch, len, &mut block, &mut tally);
+            let batch = (&mut batch, len);
+            self.remeasure_batch(before, after, sign, batch, &mut block, &mut tally);
         }
         tally
     }
@@ -154,12 +175,11 @@ impl<'a> Pass<'a> {
         &self,
         before: &PaddedSurface,
         after: &PaddedSurface,
-        batch: &mut Batch,
-        len: usize,
+        sign: f64,
+        (batch, len): (&mut Batch, usize),
         block: &mut GapBlock,
         tally: &mut Tally,
     ) {
-        let sign = self.side.sign();
         for (point, &index) in batch.points.iter_mut().zip(&batch.index[..len]) {
             *point = self.points[index as usize];
         }
@@ -172,13 +192,11 @@ impl<'a> Pass<'a> {
     }
 
     /// Parts in order.
-    fn combine(&self, parts: Vec<Tally>) -> Tally {
-        parts
-            .iter()
-            .fold(Tally::new(self.tiles.len()), |mut total, part| {
-                total.merge(part);
-                total
-            })
+    fn combine<'t>(&self, parts: impl Iterator<Item = &'t Tally>) -> Tally {
+        parts.fold(Tally::new(self.tiles.len()), |mut total, part| {
+            total.merge(part);
+            total
+        })
     }
 }
 
