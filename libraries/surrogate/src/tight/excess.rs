@@ -8,14 +8,15 @@
 //!   edges, so every piece lies in exactly one trim triangle (Section 6);
 //! * the envelope of a piece is the largest signed height (`side.sign() * w`) of
 //!   the points in it;
-//! * a piece of a kept triangle without points takes the lowest level the LP
-//!   optimum may reach over its cell: the least floor (see
-//!   [`super::bounds::floors_of`], from the fitter's candidates) of the 16
-//!   coefficients acting on the cell. By the convex hull property the optimum
-//!   never dips below it, so empty pieces never count negative for it;
+//! * a piece of a kept triangle without points takes the lowest data level within
+//!   the reach of its cell: the lowest candidate (sub-cell extreme, as the fitter
+//!   picks them) of the kept cells that share a coefficient with it (the least
+//!   [`super::bounds::floors_of`] of its 16 coefficients). A surface
+//!   may dip below that level between points (the LP's only floor lies far below
+//!   the data, see [`super::bounds::safety_floor`]); such dips count negative;
 //! * the surface is integrated exactly over each kept piece, so the excess is
 //!   `∫_kept sign f - ∫_kept envelope`: the LP objective minus a constant, and the
-//!   LP optimum has the least excess of all safe surfaces above those floors.
+//!   LP optimum has the least excess of all safe surfaces within its bounds.
 //!
 //! Reported in world units (parameter area times `u_step * v_step`).
 
@@ -50,8 +51,8 @@ pub struct Envelope {
 }
 
 impl Envelope {
-    /// `sub_cells`: the candidate sub-cells per cell the floors come from (the
-    /// fitter's `FitOptions::sub_cells`).
+    /// `sub_cells`: the candidate sub-cells per cell the empty pieces' levels
+    /// come from (the fitter's `FitOptions::sub_cells`).
     pub fn new(cloud: &CloudSide, raster: usize, sub_cells: usize) -> Self {
         let raster = raster.max(1);
         let trim = cloud.trim.clone();
@@ -70,7 +71,7 @@ impl Envelope {
             let slot = envelope.slot_of(c.s, c.t);
             envelope.level[slot] = envelope.level[slot].max(c.height);
         }
-        envelope.fill_empty_pieces(&cell_floors(cloud, sub_cells));
+        envelope.fill_empty_pieces(&empty_levels(cloud, sub_cells));
         envelope
     }
 
@@ -113,11 +114,11 @@ impl Envelope {
     }
 
     /// Marks pieces of trimmed triangles and fills empty kept ones.
-    fn fill_empty_pieces(&mut self, cell_floor: &[f64]) {
+    fn fill_empty_pieces(&mut self, empty_level: &[f64]) {
         let per_cell = self.raster * self.raster * 4;
         for g in 0..self.trim.cells_t {
             for h in 0..self.trim.cells_s {
-                let fill = cell_floor[g * self.trim.cells_s + h];
+                let fill = empty_level[g * self.trim.cells_s + h];
                 let (first, bits) = (self.slot(h, g), self.trim.cell_bits(h, g));
                 for (k, value) in self.level[first..first + per_cell].iter_mut().enumerate() {
                     *value =
@@ -173,16 +174,16 @@ pub fn excess_volume(cloud: &CloudSide, surface: &UniformCubicSurface) -> f64 {
     Envelope::new(cloud, DEFAULT_RASTER, FitOptions::default().sub_cells).excess(surface)
 }
 
-/// The least LP floor over the coefficients acting on each cell (`+inf` where
-/// no coefficient has one).
-fn cell_floors(cloud: &CloudSide, sub_cells: usize) -> Vec<f64> {
+/// The level of each cell's empty pieces: the lowest candidate of the kept
+/// cells sharing a coefficient with it (`+inf` where there is none).
+fn empty_levels(cloud: &CloudSide, sub_cells: usize) -> Vec<f64> {
     let (cols, rows) = (cloud.trim.cells_s + 1, cloud.trim.cells_t + 1);
     let all: Vec<Candidate> = cloud.constraints().collect();
     let candidates: Vec<Candidate> = candidate_indices(cloud, sub_cells)
         .iter()
         .map(|&i| all[i as usize])
         .collect();
-    let floors = floors_of(
+    let lowest = floors_of(
         cols,
         rows,
         &group_by_cell(cols, rows, &candidates),
@@ -193,7 +194,7 @@ fn cell_floors(cloud: &CloudSide, sub_cells: usize) -> Vec<f64> {
             let (h, g) = (cell % (cols - 1), cell / (cols - 1));
             cell_slots(h, g, cols, rows)
                 .iter()
-                .fold(f64::INFINITY, |m, &i| m.min(floors[i]))
+                .fold(f64::INFINITY, |m, &i| m.min(lowest[i]))
         })
         .collect()
 }

@@ -7,7 +7,7 @@
 //! Two bounds make the LP well posed where data is sparse (see [`super::bounds`]);
 //! neither binds where data is dense.
 
-use super::bounds::{ceiling_of, floors_of};
+use super::bounds::{ceiling_of, safety_floor};
 // Still public as `tight::lp::cell_slots`; defined in `cells`, below both the
 // LP and its bounds, which need it too.
 pub use super::cells::cell_slots;
@@ -37,7 +37,7 @@ pub struct SplineLp {
     pub coefficient_of: Vec<usize>,
     /// Objective weight of each unknown.
     pub cost: Vec<f64>,
-    /// Lower bound of each unknown (see [`super::bounds::floors_of`]).
+    /// Lower bound of each unknown (see [`super::bounds::safety_floor`]).
     pub floors: Vec<f64>,
     /// Upper bound shared by the unknowns (see [`super::bounds::ceiling_of`]).
     pub ceiling: f64,
@@ -67,11 +67,7 @@ impl SplineLp {
             .filter(|&i| objective[i] > 0.0 && touched[i])
             .collect();
         let cost = coefficient_of.iter().map(|&i| objective[i]).collect();
-        let floor_of_coefficient = floors_of(cols, rows, &grouped, trim);
-        let floors = coefficient_of
-            .iter()
-            .map(|&i| floor_of_coefficient[i])
-            .collect();
+        let floors = vec![safety_floor(constraints); coefficient_of.len()];
         let lp = SplineLp {
             cols,
             rows,

@@ -5,6 +5,9 @@
 //! Start from the candidate LP (one extreme point per occupied sub-cell), solve,
 //! add every point of the cloud that the solution leaves on the wrong side (the
 //! worst one per envelope raster square per round), and repeat until none does.
+//!
+//! Its only lower bound on the coefficients is one global safety floor far below
+//! the data ([`super::bounds::safety_floor`], from the candidates, as in the fit).
 
 use super::cloud_side::CloudSide;
 use super::error::LpError;
@@ -38,6 +41,14 @@ pub struct ReferenceOptimum {
     pub constraints: usize,
     /// Final uniform lift that made every point hold exactly (solver noise).
     pub lift: f64,
+    /// The safety floor under every coefficient (upper sense).
+    pub floor: f64,
+    /// Coefficients the LP moves.
+    pub unknowns: usize,
+    /// Unknowns resting on the floor or on the ceiling: where some do, the
+    /// optimum depends on where the bounds were put.
+    pub at_floor: usize,
+    pub at_ceiling: usize,
 }
 
 /// The optimal safe surface of `cloud` in the spline space of `start` (real
@@ -63,6 +74,7 @@ pub fn optimal_surface(
     let mut upper = start.clone();
     upper.coefficients.iter_mut().for_each(|c| *c *= sign);
     let base = SplineLp::new(&upper, cloud.trim, &rows)?;
+    let floor = base.floors.first().copied().unwrap_or(f64::NEG_INFINITY);
     let scale = 1.0 + points.iter().fold(0.0f64, |m, c| m.max(c.height.abs()));
     for round in 1..=MAX_ROUNDS {
         let lp = base.with_constraints(&upper, cloud.trim, &rows)?;
@@ -76,14 +88,21 @@ pub fn optimal_surface(
         // No violator left, or only rows the solver already holds to its accuracy.
         if rows.len() == before {
             let lift = lift_onto(&mut upper, &lp, &points);
-            let objective = lp.objective(&lp.gather(&upper.coefficients));
+            let x = lp.gather(&upper.coefficients);
+            let near = |v: f64, bound: f64| (v - bound).abs() <= 1e-6 * scale;
+            let at_floor = x.iter().filter(|&&v| near(v, floor)).count();
+            let at_ceiling = x.iter().filter(|&&v| near(v, lp.ceiling)).count();
             upper.coefficients.iter_mut().for_each(|c| *c *= sign);
             return Ok(ReferenceOptimum {
                 surface: upper,
-                objective,
+                objective: lp.objective(&x),
                 rounds: round,
                 constraints: lp.constraints(),
                 lift,
+                floor,
+                unknowns: x.len(),
+                at_floor,
+                at_ceiling,
             });
         }
     }

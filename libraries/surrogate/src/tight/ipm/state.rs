@@ -280,13 +280,11 @@ impl<'a> State<'a> {
     }
 }
 
-/// `(sum c) min h` over the rows and floors (0 for an empty LP).
+/// `(sum c) min h` over the rows (0 for an empty LP). Not over the floors: the
+/// safety floor lies far below the data, and a volume measured from it would
+/// make the gap rule that much looser.
 pub(super) fn base_volume(lp: &SplineLp) -> f64 {
-    let lowest = lp
-        .heights
-        .iter()
-        .chain(&lp.floors)
-        .fold(f64::INFINITY, |m, &v| m.min(v));
+    let lowest = lp.heights.iter().fold(f64::INFINITY, |m, &v| m.min(v));
     if lowest.is_finite() {
         lp.cost.iter().sum::<f64>() * lowest
     } else {

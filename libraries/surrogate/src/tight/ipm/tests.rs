@@ -35,13 +35,14 @@ fn matches_clarabel_on_a_fitted_candidate_lp() {
 
 #[test]
 fn solves_flat_degenerate_data() {
-    // Every candidate and floor at one height: the optimum is the flat surface,
-    // with every constraint and bound active at once.
+    // Every candidate at one height, on every quarter knot line: the optimum is
+    // the flat surface, with every row at a knot crossing active at once and the
+    // rest active or nearly so.
     let (cols, rows) = (5, 5);
-    let candidates: Vec<Candidate> = (0..cols * 4)
+    let candidates: Vec<Candidate> = (0..17 * 17)
         .map(|i| Candidate {
-            s: i as f64 * 0.25,
-            t: (i % rows) as f64,
+            s: (i % 17) as f64 * 0.25,
+            t: (i / 17) as f64 * 0.25,
             height: 1.0,
         })
         .collect();
