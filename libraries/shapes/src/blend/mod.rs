@@ -5,7 +5,8 @@
 //!   [`LocalAdjust`].
 //! * Blending regions (Section 4): [`PolygonOfInterest`], [`blend_regions`].
 //! * Transition surface (Section 5): [`rbf`] (triharmonic RBF, greedy centres,
-//!   dense solve) and [`sample_zero_set`] (marching tetrahedra, surface following).
+//!   dense solve, split evaluation) and [`sample_zero_set`] (marching tetrahedra,
+//!   surface following).
 //! * Merge and compound blending: [`merge`], [`blend`], [`blend_sequence`];
 //!   interactively, [`BlendSession`] (drop, adjust, clear, commit).
 //! * Measures: [`seam_gap`], [`overlap_rate`]; output: [`write_ply_with_normals`].
@@ -18,6 +19,7 @@ mod camera;
 mod depth;
 mod drag;
 mod error;
+mod lattice;
 mod merge;
 mod pipeline;
 mod polygon;
@@ -36,7 +38,9 @@ pub use depth::{BlockDepth, DepthImage, EMPTY_DEPTH};
 pub use drag::{bresenham, last_on_surface, surface_target, DragSession};
 pub use error::BlendError;
 pub use merge::{keep_transition, merge, Merged, Source};
-pub use pipeline::{blend, blend_sequence, Blend, BlendParams, BlendReport, StageTimes};
+pub use pipeline::{
+    blend, blend_sequence, Blend, BlendParams, BlendReport, Evaluation, StageTimes,
+};
 pub use polygon::{PolygonOfInterest, MAX_POLYGON_VERTICES};
 pub use polygon2d::{signed_area, Polygon2};
 pub use prepared::{Child, Prepared, MIN_CLOUD_POINTS};
@@ -44,6 +48,6 @@ pub use quality::{overlap_rate, seam_gap, seam_points, Gap};
 pub use regions::{blend_regions, BlendRegions, ParentClass, RegionParams};
 pub use session::{supersede, supersede_indices, BlendSession, DropState, ModelSources};
 pub use shroud_msg::{BlendCommand, LocalAdjust};
-pub use tetra::{sample_zero_set, SampledSurface};
+pub use tetra::{sample_zero_set, sample_zero_set_with, SampledSurface};
 pub use transform::{drop_transform, AdjustTransform, RigidTransform};
 pub use write_ply::write_ply_with_normals;

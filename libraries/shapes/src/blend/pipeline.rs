@@ -5,9 +5,11 @@
 use super::error::BlendError;
 use super::merge::{merge, Merged};
 use super::prepared::{Child, Prepared};
-use super::rbf::{build_constraints, fit_greedy, GreedyReport, Rbf, RbfParams};
+use super::rbf::{
+    build_constraints, fit_greedy, BatchField, ExactField, GreedyReport, Rbf, RbfParams, SplitField,
+};
 use super::regions::{blend_regions, BlendRegions, RegionParams};
-use super::tetra::{sample_zero_set, SampledSurface};
+use super::tetra::{sample_zero_set_with, SampledSurface};
 use super::transform::RigidTransform;
 use glam::DVec3;
 use shroud_geometry::cloud::{orient_normals, BoundaryParams, Orientation};
@@ -26,6 +28,8 @@ pub struct BlendParams {
     pub cell: f64,
     /// Sampling budget in grid cells.
     pub max_cells: usize,
+    /// How the sampling evaluates the RBF.
+    pub evaluation: Evaluation,
     /// S1/S2 threshold of the merge, as a fraction of the P_f-P_front distance.
     pub s1_threshold: f64,
     /// Fewer points in F_p or F_c is an error.
@@ -42,11 +46,23 @@ impl Default for BlendParams {
             rbf: RbfParams::default(),
             cell: 1.5,
             max_cells: 2_000_000,
+            evaluation: Evaluation::Split,
             s1_threshold: 0.5,
             min_region_points: 16,
             boundary: BoundaryParams::default(),
         }
     }
+}
+
+/// How the zero-set sampling evaluates the RBF.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Evaluation {
+    /// Near sums and an interpolated far field ([`SplitField`]): fast, within
+    /// a small fraction of a cell of the direct sum's surface.
+    #[default]
+    Split,
+    /// Every centre at every point ([`ExactField`]): the reference.
+    Direct,
 }
 
 /// Milliseconds per stage.
@@ -231,8 +247,20 @@ pub fn blend(
         let (_, h) = regions.to_plane(p);
         h >= low && h <= high && regions.outline_distance(p, reach) <= reach
     };
-    let transition = sample_zero_set(
-        &rbf,
+    let mut split;
+    let mut direct;
+    let field: &mut dyn BatchField = match params.evaluation {
+        Evaluation::Split => {
+            split = SplitField::for_sampling(&rbf, cell);
+            &mut split
+        }
+        Evaluation::Direct => {
+            direct = ExactField(&rbf);
+            &mut direct
+        }
+    };
+    let transition = sample_zero_set_with(
+        field,
         &surface,
         regions.plane.origin,
         cell,

@@ -6,14 +6,14 @@
 //! neighbours), so the tetrahedra's edges are the cube edges, the face diagonals
 //! and the body diagonal. Every sign-changing edge gives one point, placed by
 //! linear interpolation and one Newton step along the gradient, which is also its
-//! normal.
+//! normal. The RBF is evaluated in batches, one layer of the walk at a time, by
+//! its split evaluation ([`SplitField`]) unless the caller passes another.
 
 use super::error::BlendError;
-use super::rbf::Rbf;
+use super::lattice::{cell_of, pack, Fast};
+use super::rbf::{BatchField, Rbf, SplitField};
 use glam::{DVec3, IVec3};
-use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
-use std::hash::{BuildHasherDefault, Hasher};
 
 /// Points on the sampled transition surface T_R with unit normals (toward +s,
 /// the outside).
@@ -48,27 +48,6 @@ const FACES: [IVec3; 6] = [
     IVec3::new(0, 0, -1),
 ];
 
-/// A cheap multiplicative hasher for packed grid keys.
-#[derive(Default)]
-struct GridHasher(u64);
-
-impl Hasher for GridHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x100_0000_01b3);
-        }
-    }
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (x ^ (x >> 29)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-        self.0 ^= self.0 >> 32;
-    }
-}
-
-type Fast = BuildHasherDefault<GridHasher>;
-
 /// Corner `i` (bits x, y, z) of a unit cell, as an offset from its lower corner.
 fn corner_offset(i: usize) -> IVec3 {
     IVec3::new((i & 1) as i32, ((i >> 1) & 1) as i32, ((i >> 2) & 1) as i32)
@@ -79,16 +58,39 @@ fn corner_index(o: IVec3) -> usize {
     (o.x | (o.y << 1) | (o.z << 2)) as usize
 }
 
-/// Packs a grid vertex (each coordinate within +-2^20) into a u64.
-fn pack(v: IVec3) -> u64 {
-    let f = |c: i32| (c as i64 + (1 << 20)) as u64 & 0x1f_ffff;
-    f(v.x) | f(v.y) << 21 | f(v.z) << 42
+/// The sampling grid: cells of side `cell` anchored at `origin`.
+#[derive(Debug, Clone, Copy)]
+struct Grid {
+    origin: DVec3,
+    cell: f64,
+}
+
+impl Grid {
+    fn vertex(&self, v: IVec3) -> DVec3 {
+        self.origin + v.as_dvec3() * self.cell
+    }
+    fn centre(&self, c: IVec3) -> DVec3 {
+        self.origin + (c.as_dvec3() + 0.5) * self.cell
+    }
+}
+
+/// A cell the surface crosses, with its eight corner values.
+struct Crossed {
+    cell: IVec3,
+    corners: [f64; 8],
+}
+
+/// What the walk over the cells found.
+struct Walk {
+    crossed: Vec<Crossed>,
+    visited: usize,
+    evaluations: usize,
 }
 
 /// The zero set of `rbf` around `seeds`, on a grid of spacing `cell` anchored at
 /// `origin`, expanding only through cells whose centre satisfies `inside`.
 /// Fails if more than `max_cells` cells would be visited or the seeds are not
-/// near any zero crossing.
+/// near any zero crossing. The RBF is evaluated by [`SplitField::for_sampling`].
 pub fn sample_zero_set(
     rbf: &Rbf,
     seeds: &[DVec3],
@@ -97,121 +99,186 @@ pub fn sample_zero_set(
     inside: &(dyn Fn(DVec3) -> bool + Sync),
     max_cells: usize,
 ) -> Result<SampledSurface, BlendError> {
-    if !(cell > 0.0 && cell.is_finite()) {
-        return Err(BlendError::InvalidParameter {
-            name: "cell",
-            value: cell,
-            reason: "the sampling cell must be positive",
-        });
-    }
-    let to_cell = |p: DVec3| -> Option<IVec3> {
-        let g = ((p - origin) / cell).floor();
-        (g.abs().max_element() < f64::from(1 << 19)).then(|| g.as_ivec3())
-    };
-    let vertex = |v: IVec3| origin + v.as_dvec3() * cell;
-    let centre = |c: IVec3| origin + (c.as_dvec3() + 0.5) * cell;
+    check_cell(cell)?;
+    let mut field = SplitField::for_sampling(rbf, cell);
+    sample_zero_set_with(&mut field, seeds, origin, cell, inside, max_cells)
+}
 
+/// [`sample_zero_set`] with the field evaluated by `field` (for instance
+/// [`super::rbf::ExactField`], the direct sum).
+pub fn sample_zero_set_with(
+    field: &mut dyn BatchField,
+    seeds: &[DVec3],
+    origin: DVec3,
+    cell: f64,
+    inside: &(dyn Fn(DVec3) -> bool + Sync),
+    max_cells: usize,
+) -> Result<SampledSurface, BlendError> {
+    check_cell(cell)?;
+    let grid = Grid { origin, cell };
+    let walk = follow_surface(field, grid, seeds, inside, max_cells)?;
+    if walk.crossed.is_empty() {
+        return Err(BlendError::NoTransitionSurface);
+    }
+    let (starts, edges) = edge_points(&walk.crossed, grid);
+    let refined = refine(field, &starts, &edges);
+    let evaluations = walk.evaluations + starts.len();
+    let (points, normals) = refined
+        .into_iter()
+        .filter(|(_, n)| *n != DVec3::ZERO)
+        .unzip();
+    Ok(SampledSurface {
+        points,
+        normals,
+        cells_visited: walk.visited,
+        cells_crossed: walk.crossed.len(),
+        evaluations,
+    })
+}
+
+fn check_cell(cell: f64) -> Result<(), BlendError> {
+    if cell > 0.0 && cell.is_finite() {
+        return Ok(());
+    }
+    Err(BlendError::InvalidParameter {
+        name: "cell",
+        value: cell,
+        reason: "the sampling cell must be positive",
+    })
+}
+
+/// The continuation: a breadth-first walk from the seeds' cells through the
+/// faces of every crossed cell (and every seed cell), one layer at a time.
+fn follow_surface(
+    field: &mut dyn BatchField,
+    grid: Grid,
+    seeds: &[DVec3],
+    inside: &(dyn Fn(DVec3) -> bool + Sync),
+    max_cells: usize,
+) -> Result<Walk, BlendError> {
     let mut values: HashMap<u64, f64, Fast> = HashMap::default();
     let mut visited: HashSet<u64, Fast> = HashSet::default();
-    let mut crossed: Vec<IVec3> = Vec::new();
+    let mut outside: HashSet<u64, Fast> = HashSet::default();
+    let mut crossed = Vec::new();
     let mut frontier: Vec<(IVec3, bool)> = Vec::new();
     for &s in seeds {
-        if let Some(c) = to_cell(s) {
+        if let Some(c) = cell_of(s - grid.origin, grid.cell) {
             if visited.insert(pack(c)) {
                 frontier.push((c, true));
             }
         }
     }
-    let mut evaluations = 0usize;
+    let mut evaluations = 0;
     while !frontier.is_empty() {
         if visited.len() > max_cells {
             return Err(BlendError::SamplingLimit { limit: max_cells });
         }
-        // Corner values of this layer, evaluated in parallel.
-        let mut needed: Vec<IVec3> = Vec::new();
-        let mut queued: HashSet<u64, Fast> = HashSet::default();
-        for &(c, _) in &frontier {
-            for corner in 0..8 {
-                let v = c + corner_offset(corner);
-                let key = pack(v);
-                if !values.contains_key(&key) && queued.insert(key) {
-                    needed.push(v);
-                }
-            }
-        }
-        let fresh: Vec<f64> = needed
-            .par_iter()
-            .with_min_len(32)
-            .map(|&v| rbf.value(vertex(v)))
-            .collect();
-        evaluations += fresh.len();
-        for (v, s) in needed.into_iter().zip(fresh) {
-            values.insert(pack(v), s);
-        }
+        evaluations += evaluate_corners(field, grid, &frontier, &mut values);
         let mut next = Vec::new();
         for (c, seed) in frontier {
-            let mut positive = 0;
-            for corner in 0..8 {
-                let v = c + corner_offset(corner);
-                if values.get(&pack(v)).copied().unwrap_or(0.0) >= 0.0 {
-                    positive += 1;
-                }
-            }
+            let corners = corner_values(&values, c);
+            let positive = corners.iter().filter(|&&s| s >= 0.0).count();
             let crosses = positive != 0 && positive != 8;
             if crosses {
-                crossed.push(c);
+                crossed.push(Crossed { cell: c, corners });
             }
-            if crosses || seed {
-                for f in FACES {
-                    let n = c + f;
-                    if inside(centre(n)) && visited.insert(pack(n)) {
-                        next.push((n, false));
-                    }
+            if !(crosses || seed) {
+                continue;
+            }
+            for f in FACES {
+                let n = c + f;
+                let key = pack(n);
+                if visited.contains(&key) || outside.contains(&key) {
+                    continue;
+                }
+                if inside(grid.centre(n)) {
+                    visited.insert(key);
+                    next.push((n, false));
+                } else {
+                    outside.insert(key);
                 }
             }
         }
         frontier = next;
     }
-    if crossed.is_empty() {
-        return Err(BlendError::NoTransitionSurface);
-    }
-    // One point per sign-changing tetrahedron edge, deduplicated.
-    let mut edges: HashSet<(u64, u8), Fast> = HashSet::default();
-    let mut raw: Vec<(DVec3, f64)> = Vec::new();
-    for &c in &crossed {
-        // The cell's eight corner values, looked up once (every corner of a
-        // crossed cell was evaluated): the 19 edges below only index them.
-        let mut corner_values = [0.0f64; 8];
-        for (corner, value) in corner_values.iter_mut().enumerate() {
+    Ok(Walk {
+        crossed,
+        visited: visited.len(),
+        evaluations,
+    })
+}
+
+/// Evaluates the corners of `frontier` not yet in `values`, in one batch;
+/// returns how many.
+fn evaluate_corners(
+    field: &mut dyn BatchField,
+    grid: Grid,
+    frontier: &[(IVec3, bool)],
+    values: &mut HashMap<u64, f64, Fast>,
+) -> usize {
+    let mut needed: Vec<IVec3> = Vec::new();
+    let mut queued: HashSet<u64, Fast> = HashSet::default();
+    for &(c, _) in frontier {
+        for corner in 0..8 {
             let v = c + corner_offset(corner);
-            *value = values.get(&pack(v)).copied().unwrap_or(0.0);
+            let key = pack(v);
+            if !values.contains_key(&key) && queued.insert(key) {
+                needed.push(v);
+            }
         }
+    }
+    let positions: Vec<DVec3> = needed.iter().map(|&v| grid.vertex(v)).collect();
+    let fresh = field.values(&positions);
+    for (v, s) in needed.iter().zip(fresh) {
+        values.insert(pack(*v), s);
+    }
+    needed.len()
+}
+
+fn corner_values(values: &HashMap<u64, f64, Fast>, c: IVec3) -> [f64; 8] {
+    std::array::from_fn(|corner| {
+        let v = c + corner_offset(corner);
+        values.get(&pack(v)).copied().unwrap_or(0.0)
+    })
+}
+
+/// One point per sign-changing tetrahedron edge (deduplicated), by linear
+/// interpolation, with its edge's length.
+fn edge_points(crossed: &[Crossed], grid: Grid) -> (Vec<DVec3>, Vec<f64>) {
+    let mut edges: HashSet<(u64, u8), Fast> = HashSet::default();
+    let mut starts = Vec::new();
+    let mut lengths = Vec::new();
+    for Crossed { cell: c, corners } in crossed {
         for corner in 0..8 {
             let o = corner_offset(corner);
-            let sa = corner_values[corner];
+            let sa = corners[corner];
             for (k, d) in DIRECTIONS.iter().enumerate() {
                 let end = o + *d;
                 if end.max_element() > 1 {
                     continue;
                 }
-                let sb = corner_values[corner_index(end)];
-                let a = c + o;
+                let sb = corners[corner_index(end)];
+                let a = *c + o;
                 if (sa >= 0.0) == (sb >= 0.0) || !edges.insert((pack(a), k as u8)) {
                     continue;
                 }
                 let t = sa / (sa - sb);
-                raw.push((
-                    vertex(a).lerp(vertex(a + *d), t),
-                    cell * d.as_dvec3().length(),
-                ));
+                starts.push(grid.vertex(a).lerp(grid.vertex(a + *d), t));
+                lengths.push(grid.cell * d.as_dvec3().length());
             }
         }
     }
-    let refined: Vec<(DVec3, DVec3)> = raw
-        .par_iter()
-        .with_min_len(32)
-        .map(|&(p, edge)| {
-            let (s, g) = rbf.value_gradient(p);
+    (starts, lengths)
+}
+
+/// One Newton step from each start toward the zero set, at most half its
+/// edge's length; the unit gradient is the normal (zero where it vanishes).
+fn refine(field: &mut dyn BatchField, starts: &[DVec3], edges: &[f64]) -> Vec<(DVec3, DVec3)> {
+    field
+        .value_gradients(starts)
+        .into_iter()
+        .zip(starts.iter().zip(edges))
+        .map(|((s, g), (&p, &edge))| {
             let g2 = g.length_squared();
             if !(g2 > 0.0) || !s.is_finite() {
                 return (p, DVec3::ZERO);
@@ -224,17 +291,5 @@ pub fn sample_zero_set(
             };
             (p - step, g / g2.sqrt())
         })
-        .collect();
-    evaluations += refined.len();
-    let (points, normals) = refined
-        .into_iter()
-        .filter(|(_, n)| *n != DVec3::ZERO)
-        .unzip();
-    Ok(SampledSurface {
-        points,
-        normals,
-        cells_visited: visited.len(),
-        cells_crossed: crossed.len(),
-        evaluations,
-    })
+        .collect()
 }

@@ -33,7 +33,7 @@ impl Rbf {
             .collect()
     }
 
-    fn local(&self, p: DVec3) -> DVec3 {
+    pub(super) fn local(&self, p: DVec3) -> DVec3 {
         (p - self.shift) / self.scale
     }
 
