@@ -30,6 +30,7 @@
 
 use super::error::GuardError;
 use super::no_return::DarkCones;
+use super::trimmed_gaps::TrimmedGaps;
 use glam::DVec3;
 use shroud_geometry::math::Frame;
 use shroud_geometry::spline::{bezier_patch, BezierPatch, UniformCubicSurface};
@@ -109,6 +110,8 @@ pub struct Envelope {
     upper_surface: Option<UniformCubicSurface>,
     lower_surface: Option<UniformCubicSurface>,
     trim: TrimMask,
+    /// Per cell, how near a trimmed triangle may be (`guard::trimmed_gaps`).
+    trimmed_gaps: TrimmedGaps,
     locator: Locator,
     patches: Vec<CellPatches>,
     /// Absolute geometric margin of this surrogate.
@@ -182,6 +185,7 @@ impl Envelope {
             upper_surface: upper.map(|v| v.surface().clone()),
             lower_surface: lower.map(|v| v.surface().clone()),
             trim: trim.clone(),
+            trimmed_gaps: TrimmedGaps::new(trim, &domain, (cells_s, cells_t)),
             locator: domain.locator(&surrogate.frame),
             patches: Vec::with_capacity(cells_s * cells_t),
             margin,
@@ -313,6 +317,10 @@ impl Envelope {
         self.trim.cell_bits(h, g)
     }
 
+    pub(crate) fn trimmed_gaps(&self) -> &TrimmedGaps {
+        &self.trimmed_gaps
+    }
+
     pub(crate) fn patches(&self, index: usize) -> &CellPatches {
         &self.patches[index]
     }
@@ -415,6 +423,22 @@ impl Envelope {
                 f64::INFINITY,
             ],
         }
+    }
+
+    /// The first and last cell along `u` (`axis` 0) or `v` (1) that the
+    /// frame interval `x` (inside the domain) lies in, up to rounding.
+    pub(crate) fn cell_range(&self, axis: usize, x: [f64; 2]) -> [usize; 2] {
+        let (origin, n) = if axis == 0 {
+            (self.domain.u_min, self.cells_s)
+        } else {
+            (self.domain.v_min, self.cells_t)
+        };
+        let index = |x: f64| {
+            ((x - origin) * self.inv_step[axis])
+                .floor()
+                .clamp(0.0, n as f64 - 1.0) as usize
+        };
+        [index(x[0]), index(x[1])]
     }
 
     /// The cells along `u` (`axis` 0) or `v` (1) whose padded boxes may meet

@@ -62,7 +62,7 @@ pub(crate) mod tests {
     use rand::{Rng, SeedableRng};
     use rand_pcg::Pcg64;
 
-    fn random_fov(rng: &mut Pcg64) -> FieldOfView {
+    pub(crate) fn random_fov(rng: &mut Pcg64) -> FieldOfView {
         let axis = random_unit(rng);
         let helper = if axis.x.abs() < 0.9 {
             DVec3::X

@@ -52,6 +52,7 @@ mod schema;
 mod separation;
 mod shape;
 mod trajectory;
+mod trimmed_gaps;
 mod unseen;
 mod urdf;
 mod verdict_watch;

@@ -33,7 +33,7 @@ fn safe(side: Side, cols: usize, rows: usize, c: Vec<f64>, frame: &Frame) -> Saf
 
 /// A surrogate over `[0, cols-1] x [0, rows-1]` (unit steps, so frame `(u, v)`
 /// equals the parameters), looking along `direction`.
-fn surrogate(
+pub(crate) fn surrogate(
     direction: [f64; 3],
     cols: usize,
     rows: usize,

@@ -22,6 +22,7 @@
 use super::config::GuardConfig;
 use super::field_of_view::clearance_outside;
 use super::shape::Shape;
+use super::trimmed_gaps::has_trimmed;
 use super::Envelope;
 use glam::DVec2;
 use shroud_geometry::math::segment_distance;
@@ -57,60 +58,94 @@ impl Envelope {
     /// sensor's field of view or along a ray that returned nothing when the
     /// cloud stated them), in `[0, max_report]`.
     pub(crate) fn unseen_clearance(&self, shape: &Shape, config: &GuardConfig) -> f64 {
-        let (a, b) = match shape {
-            Shape::Sphere(s) => {
-                let c = self.to_frame(s.centre);
-                (P2::new(c[0], c[1]), P2::new(c[0], c[1]))
-            }
-            Shape::Capsule(c) => {
-                let (a, b) = (self.to_frame(c.a), self.to_frame(c.b));
-                (P2::new(a[0], a[1]), P2::new(b[0], b[1]))
-            }
-        };
+        let (a, b) = self.core_uv(shape);
         let cap = config.max_report;
         let offset = shape.radius() + self.slack(shape, config);
         let mut best = self.distance_outside_domain(a, b) - offset;
+        if best <= 0.0 {
+            // Nothing below can lower it, and it clamps to 0.
+            return 0.0;
+        }
         if let Some(fov) = self.field_of_view() {
             best = best.min(clearance_outside(fov, shape, cap));
         }
         if let Some(dark) = self.dark() {
             best = best.min(dark.clearance(shape, cap.min(best.max(0.0))));
         }
-        let reach = cap + offset;
-        let (lo_u, hi_u) = (a[0].min(b[0]) - reach, a[0].max(b[0]) + reach);
-        let (lo_v, hi_v) = (a[1].min(b[1]) - reach, a[1].max(b[1]) + reach);
-        if let (Some((h0, h1)), Some((g0, g1))) =
-            (self.span(0, lo_u, hi_u), self.span(1, lo_v, hi_v))
-        {
-            let d = self.domain();
-            // How far the core's extent along one axis lies from a cell's
-            // interval: a lower bound on the distance to anything in the cell,
-            // so cells no nearer than the current best are skipped.
-            let gap = |lo: f64, hi: f64, start: f64, step: f64, k: usize| {
-                let (c0, c1) = (start + k as f64 * step, start + (k + 1) as f64 * step);
-                (c0 - hi).max(lo - c1).max(0.0)
-            };
-            let (u, v) = (
-                [a[0].min(b[0]), a[0].max(b[0])],
-                [a[1].min(b[1]), a[1].max(b[1])],
-            );
-            for g in g0..=g1 {
-                if gap(v[0], v[1], d.v_min, d.v_step, g) - offset >= best {
+        // Trimmed triangles no nearer than the capped bound cannot change
+        // the clamped answer.
+        let bound = best.min(cap);
+        self.nearest_trimmed(a, b, offset, bound).clamp(0.0, cap)
+    }
+
+    /// The smaller of `bound` and the distance from segment `a`-`b` (inside
+    /// the domain) to every trimmed triangle less `offset`, bit for bit the
+    /// minimum over all of them: whole regions are skipped only when
+    /// `guard::trimmed_gaps` proves them no nearer than the bound, cells only
+    /// when their rectangle is (both with a rounding allowance).
+    fn nearest_trimmed(&self, a: P2, b: P2, offset: f64, bound: f64) -> f64 {
+        let (u, v) = (
+            [a[0].min(b[0]), a[0].max(b[0])],
+            [a[1].min(b[1]), a[1].max(b[1])],
+        );
+        if bound <= 0.0 {
+            return bound;
+        }
+        let gaps = self.trimmed_gaps();
+        let core_cells = (self.cell_range(0, u), self.cell_range(1, v));
+        if gaps.lower_bound(core_cells.0, core_cells.1) - offset >= bound {
+            return bound;
+        }
+        let reach = bound + offset;
+        let (Some((h0, h1)), Some((g0, g1))) = (
+            self.span(0, u[0] - reach, u[1] + reach),
+            self.span(1, v[0] - reach, v[1] + reach),
+        ) else {
+            return bound;
+        };
+        let d = self.domain();
+        // How far the core's extent along one axis lies from a cell's
+        // interval.
+        let gap = |x: [f64; 2], start: f64, step: f64, k: usize| {
+            let (c0, c1) = (start + k as f64 * step, start + (k + 1) as f64 * step);
+            (c0 - x[1]).max(x[0] - c1).max(0.0)
+        };
+        let mut best = bound;
+        // Nearest rows and columns first, so that the bound drops early.
+        for g in outward((g0, g1), core_cells.1[0]) {
+            let gap_v = gap(v, d.v_min, d.v_step, g);
+            if gap_v - gaps.rounding - offset >= best {
+                continue;
+            }
+            for h in outward((h0, h1), core_cells.0[0]) {
+                if !has_trimmed(self.trim_bits(h, g)) {
                     continue;
                 }
-                for h in h0..=h1 {
-                    if best <= 0.0 {
-                        return 0.0;
-                    }
-                    if gap(u[0], u[1], d.u_min, d.u_step, h) - offset >= best {
-                        continue;
-                    }
-                    let dist = self.distance_to_trimmed(h, g, a, b) - offset;
-                    best = best.min(dist);
+                let gap_u = gap(u, d.u_min, d.u_step, h);
+                let apart = (gap_u * gap_u + gap_v * gap_v).sqrt() - gaps.rounding;
+                if apart - offset >= best {
+                    continue;
+                }
+                best = best.min(self.distance_to_trimmed(h, g, a, b) - offset);
+                if best <= 0.0 {
+                    return best;
                 }
             }
         }
-        best.clamp(0.0, cap)
+        best
+    }
+
+    /// The shape's core (a sphere's centre, a capsule's segment) as a frame
+    /// segment in the `(u, v)` plane.
+    fn core_uv(&self, shape: &Shape) -> (P2, P2) {
+        let uv = |p| {
+            let f = self.to_frame(p);
+            P2::new(f[0], f[1])
+        };
+        match shape {
+            Shape::Sphere(s) => (uv(s.centre), uv(s.centre)),
+            Shape::Capsule(c) => (uv(c.a), uv(c.b)),
+        }
     }
 
     /// Distance from segment `a`-`b` (a point when equal) to the outside of
@@ -138,19 +173,35 @@ impl Envelope {
     /// `(h, g)` (infinite when the cell is whole).
     fn distance_to_trimmed(&self, h: usize, g: usize, a: P2, b: P2) -> f64 {
         let kept = self.trim_bits(h, g);
+        TRIANGLES
+            .iter()
+            .filter(|(bit, _)| kept & bit == 0)
+            .map(|(_, t)| distance_to_triangle(a, b, self.triangle_uv(h, g, t)))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Frame corners of a triangle of cell `(h, g)` given in local
+    /// coordinates.
+    fn triangle_uv(&self, h: usize, g: usize, t: &[P2; 3]) -> [P2; 3] {
         let d = self.domain();
-        let to_uv = |p: P2| {
+        t.map(|p| {
             P2::new(
                 d.u_min + (h as f64 + p[0]) * d.u_step,
                 d.v_min + (g as f64 + p[1]) * d.v_step,
             )
-        };
-        TRIANGLES
-            .iter()
-            .filter(|(bit, _)| kept & bit == 0)
-            .map(|(_, t)| segment_triangle_distance(a, b, [to_uv(t[0]), to_uv(t[1]), to_uv(t[2])]))
-            .fold(f64::INFINITY, f64::min)
+        })
     }
+}
+
+/// The indices `first..=last`, from `start` (clamped into them) outwards,
+/// alternating sides.
+fn outward((first, last): (usize, usize), start: usize) -> impl Iterator<Item = usize> {
+    let start = start.clamp(first, last);
+    (0..=last - first).flat_map(move |step| {
+        let up = Some(start + step).filter(|&i| i <= last);
+        let down = start.checked_sub(step + 1).filter(|&i| i >= first);
+        up.into_iter().chain(down)
+    })
 }
 
 /// Whether `p` lies in the closed triangle `t`.
@@ -189,10 +240,219 @@ fn segment_triangle_distance(a: P2, b: P2, t: [P2; 3]) -> f64 {
     ends.chain(corners).fold(f64::INFINITY, f64::min)
 }
 
+/// [`segment_triangle_distance`], by the shorter way for a point.
+fn distance_to_triangle(a: P2, b: P2, t: [P2; 3]) -> f64 {
+    if a == b {
+        point_triangle_distance(a, t)
+    } else {
+        segment_triangle_distance(a, b, t)
+    }
+}
+
+/// [`segment_triangle_distance`] of the segment `p`-`p`, bit for bit, with
+/// the work for the second end left out: a point meets an edge when it is
+/// on its line (the cross products vanish) within its extent, and a corner's
+/// distance to the point is the distance of the degenerate segment.
+fn point_triangle_distance(p: P2, t: [P2; 3]) -> f64 {
+    if in_triangle(p, t) {
+        return 0.0;
+    }
+    let edges = [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])];
+    if edges.iter().any(|&(c, d)| segments_meet(p, p, c, d)) {
+        return 0.0;
+    }
+    // Squared, with one square root at the end: the rounded square root is
+    // monotone, so the root of the smallest square is the smallest root.
+    let ends = edges.iter().map(|&(c, d)| segment_distance2(p, c, d));
+    let corners = t.iter().map(|&c| (c - p).length_squared());
+    ends.chain(corners).fold(f64::INFINITY, f64::min).sqrt()
+}
+
+/// The square of `shroud_geometry::math::segment_distance`, computed the
+/// same way up to its final square root.
+fn segment_distance2(q: P2, a: P2, b: P2) -> f64 {
+    let e = b - a;
+    let len2 = e.length_squared();
+    let t = if len2 > 0.0 {
+        ((q - a).dot(e) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (q - (a + e * t)).length_squared()
+}
+
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+    use crate::field_of_view::tests::{random_fov, random_unit};
+    use crate::tests::surrogate;
+    use proptest::prelude::*;
     use rand::{Rng, SeedableRng};
+    use rand_pcg::Pcg64;
+    use shroud_msg::{DarkCone, NoReturn};
+    use shroud_surrogate::TrimMask;
+
+    /// The unseen bound by exhaustion, as before `guard::trimmed_gaps`: the
+    /// domain, the field of view and the dark cones as in
+    /// [`Envelope::unseen_clearance`], then every trimmed triangle of the
+    /// domain by the general segment distance, nothing skipped.
+    fn unseen_by_exhaustion(env: &Envelope, shape: &Shape, config: &GuardConfig) -> f64 {
+        let (a, b) = env.core_uv(shape);
+        let cap = config.max_report;
+        let offset = shape.radius() + env.slack(shape, config);
+        let mut best = env.distance_outside_domain(a, b) - offset;
+        if let Some(fov) = env.field_of_view() {
+            best = best.min(clearance_outside(fov, shape, cap));
+        }
+        if let Some(dark) = env.dark() {
+            best = best.min(dark.clearance(shape, cap.min(best.max(0.0))));
+        }
+        let (cells_s, cells_t) = env.cells();
+        for (h, g) in (0..cells_t).flat_map(|g| (0..cells_s).map(move |h| (h, g))) {
+            let kept = env.trim_bits(h, g);
+            for (_, t) in TRIANGLES.iter().filter(|(bit, _)| kept & bit == 0) {
+                let d = segment_triangle_distance(a, b, env.triangle_uv(h, g, t));
+                best = best.min(d - offset);
+            }
+        }
+        best.clamp(0.0, cap)
+    }
+
+    /// A random surrogate (tilted frame, uneven steps, one side or both, a
+    /// trim that keeps `kept` of the cells whole and trims the rest at
+    /// random), maybe with a field of view and cones without a return.
+    pub(crate) fn random_envelope(rng: &mut Pcg64, kept: f64) -> Envelope {
+        let (cols, rows) = (rng.random_range(2..10), rng.random_range(2..10));
+        let mut trim = TrimMask::full(cols - 1, rows - 1);
+        for bits in trim.bits.iter_mut() {
+            if !rng.random_bool(kept) {
+                *bits = rng.random_range(0..15);
+            }
+        }
+        let direction = random_unit(rng).to_array();
+        let lower: Vec<f64> = (0..cols * rows)
+            .map(|_| rng.random_range(-1.0..0.5))
+            .collect();
+        let upper: Vec<f64> = lower
+            .iter()
+            .map(|l| l + rng.random_range(0.0..0.5))
+            .collect();
+        let (upper, lower) = match rng.random_range(0..3) {
+            0 => (Some(upper), None),
+            1 => (None, Some(lower)),
+            _ => (Some(upper), Some(lower)),
+        };
+        let mut sur = surrogate(direction, cols, rows, trim, upper, lower);
+        sur.domain.u_min = rng.random_range(-3.0..3.0);
+        sur.domain.v_min = rng.random_range(-3.0..3.0);
+        sur.domain.u_step = rng.random_range(0.05..0.5);
+        sur.domain.v_step = rng.random_range(0.05..0.5);
+        let mut env = Envelope::new(&sur).expect("a valid surrogate");
+        if rng.random_bool(0.3) {
+            env = env.with_field_of_view(Some(random_fov(rng))).unwrap();
+        }
+        if rng.random_bool(0.3) {
+            let cones = (0..rng.random_range(1..6))
+                .map(|_| DarkCone {
+                    axis: random_unit(rng).to_array(),
+                    half_angle: rng.random_range(0.01..0.3),
+                })
+                .collect();
+            let apex = [0; 3].map(|_| rng.random_range(-3.0..3.0));
+            env = env.with_no_return(Some(&NoReturn { apex, cones })).unwrap();
+        }
+        env
+    }
+
+    /// A sphere or capsule near the domain of `env`, its core sometimes on
+    /// cell borders and corners (where the gaps' bounds are tight).
+    pub(crate) fn random_shape(rng: &mut Pcg64, env: &Envelope) -> Shape {
+        let ([u0, u1], [v0, v1]) = env.uv_extent();
+        let d = env.domain();
+        let place = |rng: &mut Pcg64| {
+            let (mut u, mut v) = (
+                rng.random_range(u0 - 0.5..u1 + 0.5),
+                rng.random_range(v0 - 0.5..v1 + 0.5),
+            );
+            if rng.random_bool(0.3) {
+                u = d.u_min + ((u - d.u_min) / d.u_step * 2.0).round() * 0.5 * d.u_step;
+                v = d.v_min + ((v - d.v_min) / d.v_step * 2.0).round() * 0.5 * d.v_step;
+            }
+            env.frame()
+                .to_world(glam::DVec3::new(u, v, rng.random_range(-1.0..1.0)))
+        };
+        let radius = rng.random_range(0.001..0.4);
+        let a = place(rng);
+        if rng.random_bool(0.3) {
+            let b = if rng.random_bool(0.5) {
+                place(rng)
+            } else {
+                a + random_unit(rng) * 0.2
+            };
+            Shape::capsule(a, b, radius)
+        } else {
+            Shape::sphere(a, radius)
+        }
+    }
+
+    #[test]
+    fn outward_visits_every_index_once_nearest_first() {
+        for (first, last) in [(0, 0), (0, 5), (3, 9)] {
+            for start in 0..12 {
+                let order: Vec<usize> = outward((first, last), start).collect();
+                let mut sorted = order.clone();
+                sorted.sort();
+                assert_eq!(sorted, (first..=last).collect::<Vec<_>>());
+                let from = start.clamp(first, last);
+                let apart: Vec<usize> = order.iter().map(|i| i.abs_diff(from)).collect();
+                assert!(apart.windows(2).all(|w| w[0] <= w[1]), "{order:?}");
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+        /// The unseen search with its skips is, bit for bit, the exhaustive
+        /// minimum: never larger (that would be optimistic), never smaller.
+        #[test]
+        fn the_unseen_search_is_the_exhaustive_minimum(
+            seed in any::<u64>(),
+            kept in 0.0..1.0f64,
+            cap in 0.01..3.0f64,
+        ) {
+            let mut rng = Pcg64::seed_from_u64(seed);
+            let env = random_envelope(&mut rng, kept);
+            let config = GuardConfig { stop_distance: 0.0, max_report: cap, ..GuardConfig::default() };
+            for _ in 0..60 {
+                let shape = random_shape(&mut rng, &env);
+                let fast = env.unseen_clearance(&shape, &config);
+                let exhaustive = unseen_by_exhaustion(&env, &shape, &config);
+                prop_assert!(
+                    fast == exhaustive,
+                    "{shape:?}: {fast} vs exhaustive {exhaustive}"
+                );
+            }
+        }
+
+        /// A point's distance to a triangle is the degenerate segment's, bit
+        /// for bit, on its edges and corners too.
+        #[test]
+        fn a_point_is_a_degenerate_segment(seed in any::<u64>()) {
+            let mut rng = Pcg64::seed_from_u64(seed);
+            // Coarse dyadic coordinates put points on edges and corners.
+            let mut p = || P2::new(
+                f64::from(rng.random_range(-8..8i32)) * 0.25,
+                f64::from(rng.random_range(-8..8i32)) * 0.25,
+            );
+            for _ in 0..200 {
+                let (q, t) = (p(), [p(), p(), p()]);
+                let point = point_triangle_distance(q, t);
+                let segment = segment_triangle_distance(q, q, t);
+                prop_assert_eq!(point.to_bits(), segment.to_bits(), "{:?} {:?}", q, t);
+            }
+        }
+    }
 
     /// The segment-to-triangle distance agrees with a dense sampling of both.
     #[test]
