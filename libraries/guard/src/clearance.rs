@@ -150,12 +150,15 @@ impl Envelope {
         let mut waiting = 0;
         let mut touching: Option<bool> = None;
         let refine = config.refine_depth > 0;
-        let (boxes, rows_v) = (self.boxes(), self.rows_v());
+        let (boxes, row_boxes) = (self.boxes(), self.row_boxes());
         for g in g0..=g1 {
             // Cells nearer than `best` lie within `limit` of the core.
             let limit = best + offset;
-            let dv = (rows_v[g][0] - v[1]).max(v[0] - rows_v[g][1]).max(0.0);
-            if dv >= limit {
+            let row = &row_boxes[g];
+            let dv = (row.lo[1] - v[1]).max(v[0] - row.hi[1]).max(0.0);
+            // A row whose box is no nearer holds no cell that is (a point
+            // high above the surface, say).
+            if dv >= limit || probe.beyond(row, limit) {
                 continue;
             }
             let du = (limit * limit - dv * dv).sqrt();
@@ -300,8 +303,8 @@ impl<P: Probe> Refinement<'_, P> {
                 continue;
             }
             let (upper, lower) = (
-                upper_quarters.map_or(node.upper, |q| q[k]),
-                lower_quarters.map_or(node.lower, |q| q[k]),
+                upper_quarters.as_ref().map_or(node.upper, |q| q[k]),
+                lower_quarters.as_ref().map_or(node.lower, |q| q[k]),
             );
             let heights = e.height_range(&upper, &lower, self.patches.magnitude, level);
             // Never looser than the parent's range.
@@ -319,9 +322,11 @@ impl<P: Probe> Refinement<'_, P> {
                 }),
             );
         }
-        children.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-        for (c, child) in children {
-            let Some(child) = child else { break };
+        for k in closest_first(std::array::from_fn(|k| children[k].0)) {
+            let (c, Some(child)) = &children[k] else {
+                break;
+            };
+            let c = *c;
             if c >= self.best {
                 break;
             }
@@ -331,12 +336,27 @@ impl<P: Probe> Refinement<'_, P> {
                 break;
             }
             if level < self.config.refine_depth && c < self.config.stop_distance {
-                self.descend(&child, level + 1);
+                self.descend(child, level + 1);
             } else {
                 self.best = c;
             }
         }
     }
+}
+
+/// The order of four children by their bounds, nearest first, ties in
+/// their order (a stable insertion sort, as the standard library's sort of
+/// so few is): the children are visited by index instead of being moved.
+fn closest_first(bounds: [f64; 4]) -> [usize; 4] {
+    let mut order = [0, 1, 2, 3];
+    for i in 1..4 {
+        let mut j = i;
+        while j > 0 && bounds[order[j]].total_cmp(&bounds[order[j - 1]]).is_lt() {
+            order.swap(j, j - 1);
+            j -= 1;
+        }
+    }
+    order
 }
 
 /// The four quarters of a patch over `[0, 1/2]^2`, `[1/2, 1] x [0, 1/2]`,
@@ -375,6 +395,80 @@ fn quarters(p: &BezierPatch) -> [BezierPatch; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::unseen::tests::{random_envelope, random_shape};
+    use proptest::prelude::*;
+    use rand::{Rng, SeedableRng};
+
+    /// A probe that never skips a row: the search as it was before the rows'
+    /// boxes.
+    struct EveryRow<P>(P);
+
+    impl<P: Probe> Probe for EveryRow<P> {
+        fn uv_bounds(&self) -> ([f64; 2], [f64; 2]) {
+            self.0.uv_bounds()
+        }
+
+        fn dist2_to_box(&self, lo: &[f64; 3], hi: &[f64; 3]) -> f64 {
+            self.0.dist2_to_box(lo, hi)
+        }
+
+        fn beyond(&self, _outer: &CellBox, _limit: f64) -> bool {
+            false
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+        /// Skipping the rows whose box is no nearer than the bound so far
+        /// changes no clearance, bit for bit, whatever the stop distance,
+        /// refinement depth and cap: never larger (that would be
+        /// optimistic), never smaller.
+        #[test]
+        fn skipping_rows_by_their_boxes_changes_no_clearance(
+            seed in any::<u64>(),
+            kept in 0.3..1.0f64,
+            stop in 0.0..0.4f64,
+            depth in 0u32..=4,
+        ) {
+            let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
+            let env = random_envelope(&mut rng, kept);
+            let config = GuardConfig {
+                stop_distance: stop,
+                max_report: stop + rng.random_range(0.01..1.0),
+                refine_depth: depth,
+                ..GuardConfig::default()
+            };
+            for _ in 0..40 {
+                let Shape::Sphere(sphere) = random_shape(&mut rng, &env) else {
+                    continue;
+                };
+                let shape = Shape::Sphere(sphere);
+                let cap = rng.random_range(0.0..=config.max_report);
+                let (r, slack) = (sphere.radius, env.slack(&shape, &config));
+                let probe = PointProbe(env.to_frame(sphere.centre));
+                let touches = || env.certainly_touches(sphere.centre, r);
+                let fast = env.clearance_up_to(&shape, &config, cap);
+                let every_row = env.search(&EveryRow(probe), r, slack, (&config, cap), touches);
+                prop_assert!(fast == every_row, "{shape:?} cap {cap}: {fast} vs {every_row}");
+            }
+        }
+    }
+
+    /// Visiting by index keeps the order of sorting the children
+    /// themselves by their bounds (stably), ties, infinities and NaN included.
+    #[test]
+    fn closest_first_is_the_stable_sort_of_the_bounds() {
+        let values = [0.0, -0.0, 1.0, 0.5, f64::INFINITY, f64::NAN, 0.5];
+        for code in 0..values.len().pow(4) {
+            let bounds: [f64; 4] =
+                std::array::from_fn(|k| values[code / values.len().pow(k as u32) % values.len()]);
+            let mut sorted: Vec<(f64, usize)> = bounds.iter().copied().zip(0..).collect();
+            sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let want: Vec<usize> = sorted.iter().map(|&(_, k)| k).collect();
+            assert_eq!(closest_first(bounds).to_vec(), want, "{bounds:?}");
+        }
+    }
 
     #[test]
     fn quarters_agree_with_restrict() {

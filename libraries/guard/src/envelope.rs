@@ -104,8 +104,9 @@ pub struct Envelope {
     /// Every cell, row-major `g * cells_s + h`; trimmed cells hold
     /// [`CellBox::EMPTY`].
     boxes: Vec<CellBox>,
-    /// Per row of cells, the `v` range of its kept boxes (empty rows: `[inf, -inf]`).
-    rows_v: Vec<[f64; 2]>,
+    /// Per row of cells, the bounding box of its kept boxes (empty rows:
+    /// [`CellBox::EMPTY`]).
+    row_boxes: Vec<CellBox>,
     /// The surfaces and trim, for the exact test of a sphere centre.
     upper_surface: Option<UniformCubicSurface>,
     lower_surface: Option<UniformCubicSurface>,
@@ -141,6 +142,14 @@ impl CellBox {
 
     pub fn is_empty(&self) -> bool {
         self.lo[0] > self.hi[0]
+    }
+
+    /// The bounding box of both.
+    pub(crate) fn union(&self, other: &CellBox) -> CellBox {
+        CellBox {
+            lo: std::array::from_fn(|k| self.lo[k].min(other.lo[k])),
+            hi: std::array::from_fn(|k| self.hi[k].max(other.hi[k])),
+        }
     }
 }
 
@@ -181,7 +190,7 @@ impl Envelope {
             has_upper: upper.is_some(),
             has_lower: lower.is_some(),
             boxes: Vec::with_capacity(cells_s * cells_t),
-            rows_v: Vec::with_capacity(cells_t),
+            row_boxes: Vec::with_capacity(cells_t),
             upper_surface: upper.map(|v| v.surface().clone()),
             lower_surface: lower.map(|v| v.surface().clone()),
             trim: trim.clone(),
@@ -197,7 +206,7 @@ impl Envelope {
             dark: None,
         };
         for g in 0..cells_t {
-            let mut row_v = [f64::INFINITY, f64::NEG_INFINITY];
+            let mut row_box = CellBox::EMPTY;
             for h in 0..cells_s {
                 let kept = trim.cell_bits(h, g);
                 let patches = cell_patches(upper, lower, h, g, kept);
@@ -207,13 +216,13 @@ impl Envelope {
                     CellBox::EMPTY
                 };
                 if kept != 0 {
-                    row_v = [row_v[0].min(cell_box.lo[1]), row_v[1].max(cell_box.hi[1])];
+                    row_box = row_box.union(&cell_box);
                     envelope.kept_cells += 1;
                 }
                 envelope.boxes.push(cell_box);
                 envelope.patches.push(patches);
             }
-            envelope.rows_v.push(row_v);
+            envelope.row_boxes.push(row_box);
         }
         Ok(envelope)
     }
@@ -329,8 +338,8 @@ impl Envelope {
         &self.boxes
     }
 
-    pub(crate) fn rows_v(&self) -> &[[f64; 2]] {
-        &self.rows_v
+    pub(crate) fn row_boxes(&self) -> &[CellBox] {
+        &self.row_boxes
     }
 
     /// Whether the ball of radius `r` around the world point `p` certainly

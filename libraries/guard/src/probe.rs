@@ -8,7 +8,13 @@ pub(crate) trait Probe {
     fn uv_bounds(&self) -> ([f64; 2], [f64; 2]);
     /// Squared distance from the core to the box `lo..=hi` (0 when they meet).
     fn dist2_to_box(&self, lo: &[f64; 3], hi: &[f64; 3]) -> f64;
+    /// Whether [`Self::dist2_to_box`] is certainly at least `limit` squared
+    /// for every box inside `outer`, as computed: a whole row of cells is
+    /// skipped on it. `false` when that is not known.
+    fn beyond(&self, outer: &CellBox, limit: f64) -> bool;
 }
+
+use super::envelope::CellBox;
 
 /// A sphere's centre.
 #[derive(Debug, Clone, Copy)]
@@ -46,6 +52,14 @@ impl Probe for PointProbe {
     #[inline]
     fn dist2_to_box(&self, lo: &[f64; 3], hi: &[f64; 3]) -> f64 {
         point_box_dist2(&self.0, lo, hi)
+    }
+
+    /// Each gap to a box inside `outer` is at least the gap to `outer`, and
+    /// rounding keeps that order (every operation is monotone), so the
+    /// squared distances compare the same way bit for bit.
+    #[inline]
+    fn beyond(&self, outer: &CellBox, limit: f64) -> bool {
+        point_box_dist2(&self.0, &outer.lo, &outer.hi) >= limit * limit
     }
 }
 
@@ -106,6 +120,12 @@ impl Probe for SegmentProbe {
             best = best.min(point_box_dist2(&at(x), lo, hi));
         }
         best
+    }
+
+    /// Not known without a rounding analysis of the piecewise search:
+    /// nothing is skipped.
+    fn beyond(&self, _outer: &CellBox, _limit: f64) -> bool {
+        false
     }
 }
 
