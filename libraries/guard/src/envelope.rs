@@ -30,7 +30,7 @@
 
 use super::error::GuardError;
 use super::no_return::DarkCones;
-use super::trimmed_gaps::TrimmedGaps;
+use super::trimmed::Trimmed;
 use glam::DVec3;
 use shroud_geometry::math::Frame;
 use shroud_geometry::spline::{bezier_patch, BezierPatch, UniformCubicSurface};
@@ -111,8 +111,8 @@ pub struct Envelope {
     upper_surface: Option<UniformCubicSurface>,
     lower_surface: Option<UniformCubicSurface>,
     trim: TrimMask,
-    /// Per cell, how near a trimmed triangle may be (`guard::trimmed_gaps`).
-    trimmed_gaps: TrimmedGaps,
+    /// The trimmed triangles, for the unseen search (`guard::trimmed`).
+    trimmed: Trimmed,
     locator: Locator,
     patches: Vec<CellPatches>,
     /// Absolute geometric margin of this surrogate.
@@ -194,7 +194,7 @@ impl Envelope {
             upper_surface: upper.map(|v| v.surface().clone()),
             lower_surface: lower.map(|v| v.surface().clone()),
             trim: trim.clone(),
-            trimmed_gaps: TrimmedGaps::new(trim, &domain, (cells_s, cells_t)),
+            trimmed: Trimmed::new(trim, &domain, (cells_s, cells_t)),
             locator: domain.locator(&surrogate.frame),
             patches: Vec::with_capacity(cells_s * cells_t),
             margin,
@@ -321,13 +321,15 @@ impl Envelope {
         self.frame_error
     }
 
-    /// Kept triangle bits of cell `(h, g)`.
+    /// Kept triangle bits of cell `(h, g)` (the tests' exhaustive searches
+    /// read them; the guard reads `guard::trimmed`).
+    #[cfg(test)]
     pub(crate) fn trim_bits(&self, h: usize, g: usize) -> u8 {
         self.trim.cell_bits(h, g)
     }
 
-    pub(crate) fn trimmed_gaps(&self) -> &TrimmedGaps {
-        &self.trimmed_gaps
+    pub(crate) fn trimmed(&self) -> &Trimmed {
+        &self.trimmed
     }
 
     pub(crate) fn patches(&self, index: usize) -> &CellPatches {
@@ -385,12 +387,12 @@ impl Envelope {
     ) -> [f64; 2] {
         let pad = (PAD_ULPS + PAD_ULPS_PER_LEVEL * level as f64) * f64::EPSILON * (1.0 + magnitude);
         let hi = if self.has_upper {
-            net_range(upper)[1] + pad
+            net_max(upper) + pad
         } else {
             f64::INFINITY
         };
         let lo = if self.has_lower {
-            net_range(lower)[0] - pad
+            net_min(lower) - pad
         } else {
             f64::NEG_INFINITY
         };
@@ -480,17 +482,32 @@ impl Envelope {
 /// Smallest and largest control point of a net.
 #[inline]
 pub(crate) fn net_range(p: &BezierPatch) -> [f64; 2] {
-    let (mut lo, mut hi) = (p.0[0], p.0[0]);
+    [net_min(p), net_max(p)]
+}
+
+/// Smallest control point of a net: per column, then across (the order
+/// fixes which zero a tie of `-0` and `0` gives).
+#[inline]
+fn net_min(p: &BezierPatch) -> f64 {
+    let mut lo = p.0[0];
     for row in &p.0[1..] {
         for k in 0..4 {
             lo[k] = lo[k].min(row[k]);
+        }
+    }
+    lo[0].min(lo[1]).min(lo[2].min(lo[3]))
+}
+
+/// Largest control point of a net, as [`net_min`].
+#[inline]
+fn net_max(p: &BezierPatch) -> f64 {
+    let mut hi = p.0[0];
+    for row in &p.0[1..] {
+        for k in 0..4 {
             hi[k] = hi[k].max(row[k]);
         }
     }
-    [
-        lo[0].min(lo[1]).min(lo[2].min(lo[3])),
-        hi[0].max(hi[1]).max(hi[2].max(hi[3])),
-    ]
+    hi[0].max(hi[1]).max(hi[2].max(hi[3]))
 }
 
 /// The patches of cell `(h, g)` restricted to its kept rectangle.

@@ -52,7 +52,7 @@ mod schema;
 mod separation;
 mod shape;
 mod trajectory;
-mod trimmed_gaps;
+mod trimmed;
 mod unseen;
 mod urdf;
 mod verdict_watch;

@@ -22,35 +22,9 @@
 use super::config::GuardConfig;
 use super::field_of_view::clearance_outside;
 use super::shape::Shape;
-use super::trimmed_gaps::has_trimmed;
+use super::trimmed::{rect_gap, P2};
 use super::Envelope;
-use glam::DVec2;
 use shroud_geometry::math::segment_distance;
-use shroud_surrogate::trim::{BOTTOM, LEFT, RIGHT, TOP};
-
-/// A point of the `(u, v)` plane.
-type P2 = DVec2;
-
-/// The four triangles of a cell in local coordinates: the edge, then the
-/// centre (see `surrogate::trim`).
-const TRIANGLES: [(u8, [P2; 3]); 4] = [
-    (
-        BOTTOM,
-        [P2::new(0.0, 0.0), P2::new(1.0, 0.0), P2::new(0.5, 0.5)],
-    ),
-    (
-        RIGHT,
-        [P2::new(1.0, 0.0), P2::new(1.0, 1.0), P2::new(0.5, 0.5)],
-    ),
-    (
-        TOP,
-        [P2::new(1.0, 1.0), P2::new(0.0, 1.0), P2::new(0.5, 0.5)],
-    ),
-    (
-        LEFT,
-        [P2::new(0.0, 1.0), P2::new(0.0, 0.0), P2::new(0.5, 0.5)],
-    ),
-];
 
 impl Envelope {
     /// Lower bound on the distance from `shape` to the space this view did
@@ -81,7 +55,7 @@ impl Envelope {
     /// The smaller of `bound` and the distance from segment `a`-`b` (inside
     /// the domain) to every trimmed triangle less `offset`, bit for bit the
     /// minimum over all of them: whole regions are skipped only when
-    /// `guard::trimmed_gaps` proves them no nearer than the bound, cells only
+    /// `guard::trimmed` proves them no nearer than the bound, cells only
     /// when their rectangle is (both with a rounding allowance).
     fn nearest_trimmed(&self, a: P2, b: P2, offset: f64, bound: f64) -> f64 {
         let (u, v) = (
@@ -91,9 +65,9 @@ impl Envelope {
         if bound <= 0.0 {
             return bound;
         }
-        let gaps = self.trimmed_gaps();
+        let trimmed = self.trimmed();
         let core_cells = (self.cell_range(0, u), self.cell_range(1, v));
-        if gaps.lower_bound(core_cells.0, core_cells.1) - offset >= bound {
+        if trimmed.lower_bound(core_cells.0, core_cells.1) - offset >= bound {
             return bound;
         }
         let reach = bound + offset;
@@ -111,22 +85,22 @@ impl Envelope {
             (c0 - x[1]).max(x[0] - c1).max(0.0)
         };
         let mut best = bound;
-        // Nearest rows and columns first, so that the bound drops early.
+        // Nearest rows and cells first, so that the bound drops early.
         for g in outward((g0, g1), core_cells.1[0]) {
             let gap_v = gap(v, d.v_min, d.v_step, g);
-            if gap_v - gaps.rounding - offset >= best {
+            if gap_v - trimmed.rounding - offset >= best {
                 continue;
             }
-            for h in outward((h0, h1), core_cells.0[0]) {
-                if !has_trimmed(self.trim_bits(h, g)) {
+            for (cell, triangles) in trimmed.row(g, [h0, h1], core_cells.0[0]) {
+                if rect_gap(u, v, cell.lo, cell.hi) - trimmed.rounding - offset >= best {
                     continue;
                 }
-                let gap_u = gap(u, d.u_min, d.u_step, h);
-                let apart = (gap_u * gap_u + gap_v * gap_v).sqrt() - gaps.rounding;
-                if apart - offset >= best {
-                    continue;
+                for t in triangles {
+                    if rect_gap(u, v, t.lo, t.hi) - trimmed.rounding - offset >= best {
+                        continue;
+                    }
+                    best = best.min(distance_to_triangle(a, b, t.corners) - offset);
                 }
-                best = best.min(self.distance_to_trimmed(h, g, a, b) - offset);
                 if best <= 0.0 {
                     return best;
                 }
@@ -167,29 +141,6 @@ impl Envelope {
         } else {
             0.0
         }
-    }
-
-    /// Distance from segment `a`-`b` to the trimmed triangles of cell
-    /// `(h, g)` (infinite when the cell is whole).
-    fn distance_to_trimmed(&self, h: usize, g: usize, a: P2, b: P2) -> f64 {
-        let kept = self.trim_bits(h, g);
-        TRIANGLES
-            .iter()
-            .filter(|(bit, _)| kept & bit == 0)
-            .map(|(_, t)| distance_to_triangle(a, b, self.triangle_uv(h, g, t)))
-            .fold(f64::INFINITY, f64::min)
-    }
-
-    /// Frame corners of a triangle of cell `(h, g)` given in local
-    /// coordinates.
-    fn triangle_uv(&self, h: usize, g: usize, t: &[P2; 3]) -> [P2; 3] {
-        let d = self.domain();
-        t.map(|p| {
-            P2::new(
-                d.u_min + (h as f64 + p[0]) * d.u_step,
-                d.v_min + (g as f64 + p[1]) * d.v_step,
-            )
-        })
     }
 }
 
@@ -286,6 +237,7 @@ pub(crate) mod tests {
     use super::*;
     use crate::field_of_view::tests::{random_fov, random_unit};
     use crate::tests::surrogate;
+    use crate::trimmed::{triangle_corners, TRIANGLES};
     use proptest::prelude::*;
     use rand::{Rng, SeedableRng};
     use rand_pcg::Pcg64;
@@ -311,8 +263,8 @@ pub(crate) mod tests {
         for (h, g) in (0..cells_t).flat_map(|g| (0..cells_s).map(move |h| (h, g))) {
             let kept = env.trim_bits(h, g);
             for (_, t) in TRIANGLES.iter().filter(|(bit, _)| kept & bit == 0) {
-                let d = segment_triangle_distance(a, b, env.triangle_uv(h, g, t));
-                best = best.min(d - offset);
+                let corners = triangle_corners(env.domain(), h, g, t);
+                best = best.min(segment_triangle_distance(a, b, corners) - offset);
             }
         }
         best.clamp(0.0, cap)
