@@ -37,6 +37,7 @@
 mod arm;
 mod clearance;
 mod config;
+mod dark_groups;
 mod deadman;
 mod decision;
 mod envelope;

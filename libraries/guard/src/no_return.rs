@@ -19,6 +19,7 @@
 //! search brackets its minimum, and the bracket's half width bounds the
 //! error from below.
 
+use super::dark_groups::{cone_distance, group_cones, Cone, ConeGroup, ROUNDING_REL};
 use super::shape::Shape;
 use glam::DVec3;
 use shroud_msg::NoReturn;
@@ -33,37 +34,35 @@ const SEARCH_STEPS: usize = 40;
 pub(crate) struct DarkCones {
     apex: DVec3,
     /// Axis (renormalised: the wire allows 1e-6 off unit), `sin`, `cos`.
-    cones: Vec<(DVec3, f64, f64)>,
+    cones: Vec<Cone>,
+    /// The cones' indices gathered by direction, and the groups over them
+    /// (`guard::dark_groups`), for spheres.
+    order: Vec<usize>,
+    groups: Vec<ConeGroup>,
 }
 
 impl DarkCones {
     pub(crate) fn new(no_return: &NoReturn) -> Self {
+        let cones: Vec<Cone> = no_return
+            .cones
+            .iter()
+            .map(|c| {
+                let (sin, cos) = c.half_angle.sin_cos();
+                (DVec3::from_array(c.axis).normalize(), sin, cos)
+            })
+            .collect();
+        let (order, groups) = group_cones(&cones);
         Self {
             apex: DVec3::from_array(no_return.apex),
-            cones: no_return
-                .cones
-                .iter()
-                .map(|c| {
-                    let (sin, cos) = c.half_angle.sin_cos();
-                    (DVec3::from_array(c.axis).normalize(), sin, cos)
-                })
-                .collect(),
+            cones,
+            order,
+            groups,
         }
     }
 
     /// Distance from `p` to cone `k`.
     fn distance(&self, k: usize, p: DVec3) -> f64 {
-        let (axis, sin, cos) = self.cones[k];
-        let d = p - self.apex;
-        let along = d.dot(axis);
-        let across = (d.length_squared() - along * along).max(0.0).sqrt();
-        if across * cos <= along * sin {
-            0.0
-        } else if along * cos + across * sin <= 0.0 {
-            d.length()
-        } else {
-            across * cos - along * sin
-        }
+        cone_distance(self.apex, self.cones[k], p)
     }
 
     /// Lower bound on the distance from segment `a`-`b` to cone `k`
@@ -106,6 +105,17 @@ impl DarkCones {
             // Nothing to find below 0 (a shape outside the field of view).
             return 0.0;
         }
+        if half == 0.0 {
+            return self.sphere_clearance(mid, radius, cap);
+        }
+        self.each_cone_clearance((a, b), radius, cap)
+    }
+
+    /// [`Self::clearance`] of a capsule (or of any shape, by the tests):
+    /// every cone in the given order, the midpoint's distance less the half
+    /// length first.
+    fn each_cone_clearance(&self, (a, b): (DVec3, DVec3), radius: f64, cap: f64) -> f64 {
+        let (mid, half) = ((a + b) * 0.5, 0.5 * (b - a).length());
         let mut best = cap;
         for k in 0..self.cones.len() {
             // Cheap first: the midpoint's distance less the half length.
@@ -124,6 +134,29 @@ impl DarkCones {
         }
         best.clamp(0.0, cap)
     }
+
+    /// [`Self::each_cone_clearance`] of a sphere, bit for bit, by groups:
+    /// a group whose bounding cone is no nearer than the bound so far is
+    /// skipped (`guard::dark_groups`). A sphere's answer is the smallest of
+    /// its cones' distances, in any order.
+    fn sphere_clearance(&self, centre: DVec3, radius: f64, cap: f64) -> f64 {
+        let rounding = ROUNDING_REL * (1.0 + (centre - self.apex).length());
+        let mut best = cap;
+        for group in &self.groups {
+            if let Some(bound) = group.bound {
+                if cone_distance(self.apex, bound, centre) - rounding - radius >= best {
+                    continue;
+                }
+            }
+            for &k in &self.order[group.members[0]..group.members[1]] {
+                best = best.min(self.distance(k, centre) - radius);
+                if best <= 0.0 {
+                    return 0.0;
+                }
+            }
+        }
+        best.clamp(0.0, cap)
+    }
 }
 
 #[cfg(test)]
@@ -131,9 +164,67 @@ mod tests {
     use super::*;
     use crate::field_of_view::tests::random_unit as unit;
     use crate::{Capsule, Sphere};
+    use proptest::prelude::*;
     use rand::{Rng, SeedableRng};
     use rand_pcg::Pcg64;
     use shroud_msg::DarkCone;
+
+    /// Up to `MAX_DARK_CONES` cones from a random apex: a grid across a
+    /// cone of view (as a camera lists them), a few tight clusters, or
+    /// anywhere.
+    fn random_cones(rng: &mut Pcg64) -> NoReturn {
+        let centre = unit(rng);
+        let (e1, e2) = centre.any_orthonormal_pair();
+        let n = rng.random_range(1..=shroud_msg::MAX_DARK_CONES);
+        let (kind, side) = (rng.random_range(0..3), (n as f64).sqrt().ceil() as usize);
+        let span = rng.random_range(0.05..1.0);
+        let cones = (0..n)
+            .map(|k| {
+                let axis = match kind {
+                    0 => {
+                        let at = |x: usize| span * (2.0 * (x as f64 + 0.5) / side as f64 - 1.0);
+                        centre + e1 * at(k % side) + e2 * at(k / side)
+                    }
+                    1 => centre + unit(rng) * span * 0.1 + e1 * (k % 4) as f64 * span,
+                    _ => unit(rng),
+                };
+                DarkCone {
+                    axis: axis.normalize().to_array(),
+                    half_angle: rng.random_range(0.001..0.2),
+                }
+            })
+            .collect();
+        NoReturn {
+            apex: [0; 3].map(|_| rng.random_range(-2.0..2.0)),
+            cones,
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+        /// A sphere's bound by groups is, bit for bit, the bound over every
+        /// cone in turn: never larger (that would be optimistic), never
+        /// smaller.
+        #[test]
+        fn spheres_by_groups_are_bounded_as_by_every_cone(seed in any::<u64>(), cap in 0.01..3.0f64) {
+            let mut rng = Pcg64::seed_from_u64(seed);
+            let no_return = random_cones(&mut rng);
+            let cones = DarkCones::new(&no_return);
+            let apex = DVec3::from_array(no_return.apex);
+            let axis = DVec3::from_array(no_return.cones[0].axis);
+            for _ in 0..100 {
+                // Near the cones and anywhere around the apex.
+                let centre = apex
+                    + (axis * rng.random_range(0.0..3.0) + unit(&mut rng) * rng.random_range(0.0..1.0));
+                let radius = rng.random_range(0.001..0.3);
+                let sphere = Shape::Sphere(Sphere { centre, radius });
+                let grouped = cones.clearance(&sphere, cap);
+                let every = cones.each_cone_clearance((centre, centre), radius, cap);
+                prop_assert!(grouped == every, "{centre} r {radius}: {grouped} vs {every}");
+            }
+        }
+    }
 
     /// The distance from `p` to one cone by brute force: the nearest of
     /// 4000 generators (rays from the apex on the cone's surface), each an
