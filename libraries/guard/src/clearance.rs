@@ -34,12 +34,13 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::config::GuardConfig;
-use super::envelope::{rect_meets_kept, CellBox, CellPatches, Envelope};
+use super::envelope::{rect_meets_kept, CellBox, CellPatches, Envelope, Piece, Split};
 use super::error::GuardError;
 use super::probe::{PointProbe, Probe, SegmentProbe};
 use super::shape::Shape;
 use glam::DVec3;
 use shroud_geometry::spline::BezierPatch;
+use std::sync::OnceLock;
 
 /// Cells waiting for refinement, kept on the stack; beyond this many a cell is
 /// refined at once (same answer, less pruning).
@@ -231,102 +232,111 @@ impl Envelope {
             s: p.s,
             t: p.t,
             h: [coarse.lo[2], coarse.hi[2]],
-            upper: p.upper,
-            lower: p.lower,
+            upper: &p.upper,
+            lower: &p.lower,
         };
         let mut search = Refinement {
             envelope: self,
             probe,
             offset,
+            index,
             cell: (index % cells_s, index / cells_s),
             patches: p,
             config,
             best,
         };
-        search.descend(&node, 1);
+        search.descend(&node, 1, Some(Kept::Cell));
         search.best
     }
 }
 
-/// A sub-rectangle of a cell (local parameters) with its restricted patches.
+/// A sub-rectangle of a cell (local parameters) with its restricted
+/// patches, borrowed from the cell or from the piece it is.
 #[derive(Clone, Copy)]
-struct Node {
+struct Node<'p> {
     s: [f64; 2],
     t: [f64; 2],
     /// Padded height range of the points over the node.
     h: [f64; 2],
-    upper: BezierPatch,
-    lower: BezierPatch,
+    upper: &'p BezierPatch,
+    lower: &'p BezierPatch,
+}
+
+impl<'p> Node<'p> {
+    fn of(piece: &'p Piece) -> Self {
+        Node {
+            s: piece.s,
+            t: piece.t,
+            h: piece.h,
+            upper: &piece.upper,
+            lower: &piece.lower,
+        }
+    }
 }
 
 struct Refinement<'a, P> {
     envelope: &'a Envelope,
     probe: &'a P,
     offset: f64,
+    /// The cell, as an index and as `(h, g)`.
+    index: usize,
     cell: (usize, usize),
     patches: &'a CellPatches,
     config: &'a GuardConfig,
     best: f64,
 }
 
-impl<P: Probe> Refinement<'_, P> {
+/// Where a node's split is kept with the envelope once made (it depends on
+/// the surrogate alone): the cell's own, or that of the cell's quarter `k`.
+/// Deeper splits are made anew (at most five a cell are kept, some 8 KB).
+#[derive(Debug, Clone, Copy)]
+enum Kept {
+    Cell,
+    Quarter(usize),
+}
+
+impl<'a, P: Probe> Refinement<'a, P> {
+    /// The place of a kept split (`None` when the cell's split is not
+    /// made yet, which its quarters' come after).
+    fn kept(&self, at: Kept) -> Option<&'a OnceLock<Box<Split>>> {
+        let cell = self.envelope.first_split(self.index);
+        match at {
+            Kept::Cell => Some(cell),
+            Kept::Quarter(k) => cell.get()?[k].as_ref().map(|piece| &piece.split),
+        }
+    }
+
     /// Splits `node` 2x2 (children at `level`) and folds their bounds into
     /// `best`, recursing into children still closer than `stop_distance`.
-    fn descend(&mut self, node: &Node, level: u32) {
-        let e = self.envelope;
-        let (has_upper, has_lower) = (e.has_upper(), e.has_lower());
-        let mut children: [(f64, Option<Node>); 4] = [(f64::INFINITY, None); 4];
-        let halves = [[0.0, 0.5], [0.5, 1.0]];
-        let upper_quarters = has_upper.then(|| quarters(&node.upper));
-        let lower_quarters = has_lower.then(|| quarters(&node.lower));
-        for (k, child) in children.iter_mut().enumerate() {
-            let (hs, ht) = (halves[k % 2], halves[k / 2]);
-            let local = |x: [f64; 2], h: [f64; 2]| {
-                let mid = 0.5 * (x[0] + x[1]);
-                if h[0] == 0.0 {
-                    [x[0], mid]
-                } else {
-                    [mid, x[1]]
-                }
+    /// The split is made once and kept in `kept` when given (near the top
+    /// of a cell's tree: it depends on the surrogate alone).
+    fn descend(&mut self, node: &Node, level: u32, kept: Option<Kept>) {
+        let fresh;
+        let split: &Split = match kept.and_then(|at| self.kept(at)) {
+            Some(lock) => lock.get_or_init(|| Box::new(self.split(node, level))),
+            None => {
+                fresh = self.split(node, level);
+                &fresh
+            }
+        };
+        let mut children: [(f64, Option<&Piece>); 4] = [(f64::INFINITY, None); 4];
+        for (child, piece) in children.iter_mut().zip(split) {
+            let Some(piece) = piece else {
+                continue;
             };
-            let (s, t) = (local(node.s, hs), local(node.t, ht));
-            if !rect_meets_kept(self.patches.kept, s, t) {
+            let near = &piece.near;
+            if self.probe.dist2_to_box(&near.lo, &near.hi).sqrt() - self.offset >= self.best {
                 continue;
             }
-            // The child's points lie in the parent's height range too (its net
-            // is made of convex combinations of the parent's): a cheap first
-            // bound before restricting the patches.
-            let (h, g) = self.cell;
-            let mut b: CellBox = e.sub_box_uv(h, g, s, t);
-            (b.lo[2], b.hi[2]) = (node.h[0], node.h[1]);
-            if self.probe.dist2_to_box(&b.lo, &b.hi).sqrt() - self.offset >= self.best {
-                continue;
-            }
-            let (upper, lower) = (
-                upper_quarters.as_ref().map_or(node.upper, |q| q[k]),
-                lower_quarters.as_ref().map_or(node.lower, |q| q[k]),
-            );
-            let heights = e.height_range(&upper, &lower, self.patches.magnitude, level);
-            // Never looser than the parent's range.
-            let heights = [heights[0].max(node.h[0]), heights[1].min(node.h[1])];
-            (b.lo[2], b.hi[2]) = (heights[0], heights[1]);
+            let mut b = *near;
+            (b.lo[2], b.hi[2]) = (piece.h[0], piece.h[1]);
             let c = self.probe.dist2_to_box(&b.lo, &b.hi).sqrt() - self.offset;
-            *child = (
-                c,
-                Some(Node {
-                    s,
-                    t,
-                    h: heights,
-                    upper,
-                    lower,
-                }),
-            );
+            *child = (c, Some(piece));
         }
         for k in closest_first(std::array::from_fn(|k| children[k].0)) {
-            let (c, Some(child)) = &children[k] else {
+            let (c, Some(piece)) = children[k] else {
                 break;
             };
-            let c = *c;
             if c >= self.best {
                 break;
             }
@@ -336,11 +346,56 @@ impl<P: Probe> Refinement<'_, P> {
                 break;
             }
             if level < self.config.refine_depth && c < self.config.stop_distance {
-                self.descend(child, level + 1);
+                let kept = (level == 1).then_some(Kept::Quarter(k));
+                self.descend(&Node::of(piece), level + 1, kept);
             } else {
                 self.best = c;
             }
         }
+    }
+
+    /// The quarters of `node` (children at `level`), as far as they are
+    /// the same for every shape. A child's points lie in the parent's
+    /// height range too (its net is made of convex combinations of the
+    /// parent's), hence the cheap first bound `near`.
+    fn split(&self, node: &Node, level: u32) -> Split {
+        let e = self.envelope;
+        let upper_quarters = e.has_upper().then(|| quarters(node.upper));
+        let lower_quarters = e.has_lower().then(|| quarters(node.lower));
+        let halves = [[0.0, 0.5], [0.5, 1.0]];
+        let local = |x: [f64; 2], h: [f64; 2]| {
+            let mid = 0.5 * (x[0] + x[1]);
+            if h[0] == 0.0 {
+                [x[0], mid]
+            } else {
+                [mid, x[1]]
+            }
+        };
+        std::array::from_fn(|k| {
+            let (s, t) = (local(node.s, halves[k % 2]), local(node.t, halves[k / 2]));
+            if !rect_meets_kept(self.patches.kept, s, t) {
+                return None;
+            }
+            let (h, g) = self.cell;
+            let mut near: CellBox = e.sub_box_uv(h, g, s, t);
+            (near.lo[2], near.hi[2]) = (node.h[0], node.h[1]);
+            let (upper, lower) = (
+                upper_quarters.as_ref().map_or(*node.upper, |q| q[k]),
+                lower_quarters.as_ref().map_or(*node.lower, |q| q[k]),
+            );
+            let heights = e.height_range(&upper, &lower, self.patches.magnitude, level);
+            // Never looser than the parent's range.
+            let h = [heights[0].max(node.h[0]), heights[1].min(node.h[1])];
+            Some(Piece {
+                s,
+                t,
+                near,
+                h,
+                upper,
+                lower,
+                split: OnceLock::new(),
+            })
+        })
     }
 }
 
@@ -423,7 +478,8 @@ mod tests {
         /// Skipping the rows whose box is no nearer than the bound so far
         /// changes no clearance, bit for bit, whatever the stop distance,
         /// refinement depth and cap: never larger (that would be
-        /// optimistic), never smaller.
+        /// optimistic), never smaller; nor do the splits the envelope
+        /// keeps from earlier shapes.
         #[test]
         fn skipping_rows_by_their_boxes_changes_no_clearance(
             seed in any::<u64>(),
@@ -433,6 +489,7 @@ mod tests {
         ) {
             let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
             let env = random_envelope(&mut rng, kept);
+            let cold = env.clone();
             let config = GuardConfig {
                 stop_distance: stop,
                 max_report: stop + rng.random_range(0.01..1.0),
@@ -451,6 +508,9 @@ mod tests {
                 let fast = env.clearance_up_to(&shape, &config, cap);
                 let every_row = env.search(&EveryRow(probe), r, slack, (&config, cap), touches);
                 prop_assert!(fast == every_row, "{shape:?} cap {cap}: {fast} vs {every_row}");
+                // The splits kept from earlier shapes change nothing either.
+                let cold = cold.clone().clearance_up_to(&shape, &config, cap);
+                prop_assert!(fast == cold, "{shape:?} cap {cap}: {fast} vs {cold} afresh");
             }
         }
     }

@@ -39,6 +39,7 @@ use shroud_surrogate::query::{kept_closed, patch_on_rect, SideView, SurrogateVie
 use shroud_surrogate::trim::{ALL, BOTTOM, LEFT, RIGHT, TOP};
 use shroud_surrogate::DomainLocate;
 use shroud_surrogate::{Domain, Locator, Surrogate, TrimMask, DOMAIN_SLACK};
+use std::sync::OnceLock;
 
 /// Geometric margin, relative to the largest coordinate magnitude involved:
 /// covers the locator's and the frame's rounding (a few ulps) many times over.
@@ -92,6 +93,25 @@ pub(crate) struct CellPatches {
     pub magnitude: f64,
 }
 
+/// A quarter of a piece of a kept cell, the same for every shape: its local
+/// rectangle `s` x `t`, its frame box with its parent's height range (a
+/// cheap first bound), its own padded height range (never looser than the
+/// parent's) and its restricted patches (`guard::clearance` refines by them),
+/// and its own split once a shape needed it (near the top of the tree only).
+#[derive(Debug, Clone)]
+pub(crate) struct Piece {
+    pub s: [f64; 2],
+    pub t: [f64; 2],
+    pub near: CellBox,
+    pub h: [f64; 2],
+    pub upper: BezierPatch,
+    pub lower: BezierPatch,
+    pub split: OnceLock<Box<Split>>,
+}
+
+/// The four quarters of a piece, `None` where no kept triangle is met.
+pub(crate) type Split = [Option<Piece>; 4];
+
 /// Per-surrogate precomputation for clearance queries.
 #[derive(Debug, Clone)]
 pub struct Envelope {
@@ -115,6 +135,9 @@ pub struct Envelope {
     trimmed: Trimmed,
     locator: Locator,
     patches: Vec<CellPatches>,
+    /// Per cell, its first split, computed when a shape first needs it and
+    /// kept with the envelope (it depends on the surrogate alone).
+    first_splits: Vec<OnceLock<Box<Split>>>,
     /// Absolute geometric margin of this surrogate.
     margin: f64,
     /// Extra padding in `u` and `v` of rectangles on the domain's border.
@@ -197,6 +220,7 @@ impl Envelope {
             trimmed: Trimmed::new(trim, &domain, (cells_s, cells_t)),
             locator: domain.locator(&surrogate.frame),
             patches: Vec::with_capacity(cells_s * cells_t),
+            first_splits: (0..cells_s * cells_t).map(|_| OnceLock::new()).collect(),
             margin,
             slack_pad,
             frame_error,
@@ -330,6 +354,11 @@ impl Envelope {
 
     pub(crate) fn trimmed(&self) -> &Trimmed {
         &self.trimmed
+    }
+
+    /// Where the first split of cell `index` is kept.
+    pub(crate) fn first_split(&self, index: usize) -> &OnceLock<Box<Split>> {
+        &self.first_splits[index]
     }
 
     pub(crate) fn patches(&self, index: usize) -> &CellPatches {
