@@ -311,11 +311,15 @@ impl<'a, P: Probe> Refinement<'a, P> {
     /// The split is made once and kept in `kept` when given (near the top
     /// of a cell's tree: it depends on the surrogate alone).
     fn descend(&mut self, node: &Node, level: u32, kept: Option<Kept>) {
-        let fresh;
+        let mut fresh = Split::default();
         let split: &Split = match kept.and_then(|at| self.kept(at)) {
-            Some(lock) => lock.get_or_init(|| Box::new(self.split(node, level))),
+            Some(lock) => lock.get_or_init(|| {
+                let mut split = Box::default();
+                self.split(node, level, &mut split, false);
+                split
+            }),
             None => {
-                fresh = self.split(node, level);
+                self.split(node, level, &mut fresh, true);
                 &fresh
             }
         };
@@ -324,13 +328,12 @@ impl<'a, P: Probe> Refinement<'a, P> {
             let Some(piece) = piece else {
                 continue;
             };
-            let near = &piece.near;
-            if self.probe.dist2_to_box(&near.lo, &near.hi).sqrt() - self.offset >= self.best {
+            if self.bound(&piece.near) >= self.best {
                 continue;
             }
-            let mut b = *near;
+            let mut b = piece.near;
             (b.lo[2], b.hi[2]) = (piece.h[0], piece.h[1]);
-            let c = self.probe.dist2_to_box(&b.lo, &b.hi).sqrt() - self.offset;
+            let c = self.bound(&b);
             *child = (c, Some(piece));
         }
         for k in closest_first(std::array::from_fn(|k| children[k].0)) {
@@ -354,11 +357,13 @@ impl<'a, P: Probe> Refinement<'a, P> {
         }
     }
 
-    /// The quarters of `node` (children at `level`), as far as they are
-    /// the same for every shape. A child's points lie in the parent's
-    /// height range too (its net is made of convex combinations of the
-    /// parent's), hence the cheap first bound `near`.
-    fn split(&self, node: &Node, level: u32) -> Split {
+    /// The quarters of `node` (children at `level`) into `out`, as far as
+    /// they are the same for every shape. A child's points lie in the
+    /// parent's height range too (its net is made of convex combinations of
+    /// the parent's), hence the cheap first bound `near`; with `near_only`,
+    /// a quarter that is no nearer by it than `best` is left out at once
+    /// (as `descend` would leave it out).
+    fn split(&self, node: &Node, level: u32, out: &mut Split, near_only: bool) {
         let e = self.envelope;
         let upper_quarters = e.has_upper().then(|| quarters(node.upper));
         let lower_quarters = e.has_lower().then(|| quarters(node.lower));
@@ -371,14 +376,17 @@ impl<'a, P: Probe> Refinement<'a, P> {
                 [mid, x[1]]
             }
         };
-        std::array::from_fn(|k| {
+        for (k, piece) in out.iter_mut().enumerate() {
             let (s, t) = (local(node.s, halves[k % 2]), local(node.t, halves[k / 2]));
             if !rect_meets_kept(self.patches.kept, s, t) {
-                return None;
+                continue;
             }
             let (h, g) = self.cell;
             let mut near: CellBox = e.sub_box_uv(h, g, s, t);
             (near.lo[2], near.hi[2]) = (node.h[0], node.h[1]);
+            if near_only && self.bound(&near) >= self.best {
+                continue;
+            }
             let (upper, lower) = (
                 upper_quarters.as_ref().map_or(*node.upper, |q| q[k]),
                 lower_quarters.as_ref().map_or(*node.lower, |q| q[k]),
@@ -386,7 +394,7 @@ impl<'a, P: Probe> Refinement<'a, P> {
             let heights = e.height_range(&upper, &lower, self.patches.magnitude, level);
             // Never looser than the parent's range.
             let h = [heights[0].max(node.h[0]), heights[1].min(node.h[1])];
-            Some(Piece {
+            *piece = Some(Piece {
                 s,
                 t,
                 near,
@@ -394,8 +402,13 @@ impl<'a, P: Probe> Refinement<'a, P> {
                 upper,
                 lower,
                 split: OnceLock::new(),
-            })
-        })
+            });
+        }
+    }
+
+    /// The shape's bound from a box: its distance less the offset.
+    fn bound(&self, b: &CellBox) -> f64 {
+        self.probe.dist2_to_box(&b.lo, &b.hi).sqrt() - self.offset
     }
 }
 
