@@ -213,10 +213,11 @@ fn point_triangle_distance(p: P2, t: [P2; 3]) -> f64 {
         return 0.0;
     }
     // Squared, with one square root at the end: the rounded square root is
-    // monotone, so the root of the smallest square is the smallest root.
-    let ends = edges.iter().map(|&(c, d)| segment_distance2(p, c, d));
-    let corners = t.iter().map(|&c| (c - p).length_squared());
-    ends.chain(corners).fold(f64::INFINITY, f64::min).sqrt()
+    // monotone, so the root of the smallest square is the smallest root
+    // (and the smallest of squares, never NaN, is the same in any order).
+    let [e0, e1, e2] = edges.map(|(c, d)| segment_distance2(p, c, d));
+    let [c0, c1, c2] = t.map(|c| (c - p).length_squared());
+    e0.min(e1).min(e2).min(c0.min(c1).min(c2)).sqrt()
 }
 
 /// The square of `shroud_geometry::math::segment_distance`, computed the
