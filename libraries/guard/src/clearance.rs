@@ -245,7 +245,7 @@ impl Envelope {
             config,
             best,
         };
-        search.descend(&node, 1, Some(Kept::Cell));
+        search.descend(&node, 1, Some(Kept::CELL));
         search.best
     }
 }
@@ -286,24 +286,46 @@ struct Refinement<'a, P> {
     best: f64,
 }
 
+/// How many levels below a cell splits are kept with the envelope: the
+/// cell's, its quarters' and theirs (at most 21 a cell, some 34 KB, for the
+/// cells shapes came near); deeper splits are made anew.
+const KEPT_LEVELS: usize = 2;
+
 /// Where a node's split is kept with the envelope once made (it depends on
-/// the surrogate alone): the cell's own, or that of the cell's quarter `k`.
-/// Deeper splits are made anew (at most five a cell are kept, some 8 KB).
+/// the surrogate alone): the quarters taken from the cell down to the node.
 #[derive(Debug, Clone, Copy)]
-enum Kept {
-    Cell,
-    Quarter(usize),
+struct Kept {
+    path: [usize; KEPT_LEVELS],
+    len: usize,
+}
+
+impl Kept {
+    /// The cell's own split.
+    const CELL: Kept = Kept {
+        path: [0; KEPT_LEVELS],
+        len: 0,
+    };
+
+    /// Where quarter `k`'s split is kept, if it is.
+    fn then(self, k: usize) -> Option<Kept> {
+        (self.len < KEPT_LEVELS).then(|| {
+            let mut next = self;
+            next.path[self.len] = k;
+            next.len += 1;
+            next
+        })
+    }
 }
 
 impl<'a, P: Probe> Refinement<'a, P> {
-    /// The place of a kept split (`None` when the cell's split is not
-    /// made yet, which its quarters' come after).
+    /// The place of a kept split (`None` when a split above it is not
+    /// made yet, which it comes after).
     fn kept(&self, at: Kept) -> Option<&'a OnceLock<Box<Split>>> {
-        let cell = self.envelope.first_split(self.index);
-        match at {
-            Kept::Cell => Some(cell),
-            Kept::Quarter(k) => cell.get()?[k].as_ref().map(|piece| &piece.split),
+        let mut place = self.envelope.first_split(self.index);
+        for &k in &at.path[..at.len] {
+            place = &place.get()?[k].as_ref()?.split;
         }
+        Some(place)
     }
 
     /// Splits `node` 2x2 (children at `level`) and folds their bounds into
@@ -349,7 +371,7 @@ impl<'a, P: Probe> Refinement<'a, P> {
                 break;
             }
             if level < self.config.refine_depth && c < self.config.stop_distance {
-                let kept = (level == 1).then_some(Kept::Quarter(k));
+                let kept = kept.and_then(|at| at.then(k));
                 self.descend(&Node::of(piece), level + 1, kept);
             } else {
                 self.best = c;

@@ -135,8 +135,9 @@ pub struct Envelope {
     trimmed: Trimmed,
     locator: Locator,
     patches: Vec<CellPatches>,
-    /// Per cell, its first split, computed when a shape first needs it and
-    /// kept with the envelope (it depends on the surrogate alone).
+    /// Per cell, its split, computed when a shape first needs it and kept
+    /// with the envelope (it depends on the surrogate alone); the pieces
+    /// keep theirs below it (`guard::clearance`).
     first_splits: Vec<OnceLock<Box<Split>>>,
     /// Absolute geometric margin of this surrogate.
     margin: f64,
@@ -473,11 +474,7 @@ impl Envelope {
         } else {
             (self.domain.v_min, self.cells_t)
         };
-        let index = |x: f64| {
-            ((x - origin) * self.inv_step[axis])
-                .floor()
-                .clamp(0.0, n as f64 - 1.0) as usize
-        };
+        let index = |x: f64| cell_index((x - origin) * self.inv_step[axis], n);
         [index(x[0]), index(x[1])]
     }
 
@@ -493,19 +490,26 @@ impl Envelope {
             (self.domain.v_min, self.cells_t)
         };
         let inv = self.inv_step[axis];
-        let n = n as f64;
         // Boxes reach past their cells by the margin and the slack padding.
         let pad = 2.0 * self.margin + 2.0 * self.slack_pad[axis];
         let (a, b) = (
             (lo - pad - origin) * inv - FUDGE,
             (hi + pad - origin) * inv + FUDGE,
         );
-        if !(b >= 0.0 && a <= n) {
+        if !(b >= 0.0 && a <= n as f64) {
             return None;
         }
-        let index = |x: f64| x.floor().clamp(0.0, n - 1.0) as usize;
-        Some((index(a), index(b)))
+        Some((cell_index(a, n), cell_index(b, n)))
     }
+}
+
+/// `floor(x)` clamped into `0..cells` (`cells >= 1`), NaN to 0, as an
+/// index: the saturating cast truncates towards zero, which is the floor
+/// from 0 up, and takes what is below 0, and NaN, to 0; a call of `floor`
+/// the baseline x86-64 has no instruction for.
+#[inline]
+fn cell_index(x: f64, cells: usize) -> usize {
+    (x as usize).min(cells - 1)
 }
 
 /// Smallest and largest control point of a net.
@@ -628,6 +632,32 @@ mod tests {
     use shroud_surrogate::query::kept_closed;
     use shroud_surrogate::trim::triangle_of;
     use shroud_surrogate::TrimMask;
+
+    /// The cast is the clamped floor it replaced, NaN and infinities
+    /// included.
+    #[test]
+    fn cell_index_is_the_clamped_floor() {
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(13);
+        let special = [
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            -0.0,
+            0.0,
+            -1.0,
+            -0.5,
+            1e300,
+        ];
+        for cells in 1..6usize {
+            let mut xs: Vec<f64> = special.to_vec();
+            xs.extend((0..200).map(|_| rng.random_range(-3.0..9.0)));
+            xs.extend((0..=9).map(|k| k as f64));
+            for x in xs {
+                let floor = x.floor().clamp(0.0, cells as f64 - 1.0) as usize;
+                assert_eq!(cell_index(x, cells), floor, "{x} in {cells}");
+            }
+        }
+    }
 
     #[test]
     fn kept_rect_bounds_the_kept_triangles() {
