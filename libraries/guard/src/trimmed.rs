@@ -50,8 +50,9 @@ pub(crate) const ROUNDING_REL: f64 = 1e-9;
 #[derive(Debug, Clone)]
 pub(crate) struct Trimmed {
     cells_s: usize,
-    /// Per row, the range of `cells` in it.
-    rows: Vec<[usize; 2]>,
+    /// Per row `g` and column `h` in `0..=cells_s`, at `g * (cells_s + 1) +
+    /// h`: the index in `cells` of the row's first cell at or right of `h`.
+    first_at: Vec<usize>,
     /// Every cell with a trimmed triangle, row by row, by column.
     cells: Vec<TrimmedCell>,
     /// Every trimmed triangle, cell by cell.
@@ -99,18 +100,18 @@ impl Trimmed {
             .fold(0.0f64, |m, x| m.max(x.abs()));
         let mut trimmed = Self {
             cells_s: cells.0,
-            rows: Vec::with_capacity(cells.1),
+            first_at: Vec::with_capacity((cells.0 + 1) * cells.1),
             cells: Vec::new(),
             triangles: Vec::new(),
             gaps: gaps_to_trimmed(trim, [domain.u_step, domain.v_step], cells),
             rounding: ROUNDING_REL * (1.0 + scale),
         };
         for g in 0..cells.1 {
-            let first = trimmed.cells.len();
             for h in 0..cells.0 {
+                trimmed.first_at.push(trimmed.cells.len());
                 trimmed.push_cell(domain, h, g, trim.cell_bits(h, g));
             }
-            trimmed.rows.push([first, trimmed.cells.len()]);
+            trimmed.first_at.push(trimmed.cells.len());
         }
         trimmed
     }
@@ -162,12 +163,13 @@ impl Trimmed {
         h: [usize; 2],
         from: usize,
     ) -> impl Iterator<Item = (&TrimmedCell, &[TrimmedTriangle])> {
-        let [first, last] = self.rows[g];
-        let row = &self.cells[first..last];
-        let cells = &row[row.partition_point(|c| c.h < h[0])..row.partition_point(|c| c.h <= h[1])];
+        let at = |column: usize| self.first_at[g * (self.cells_s + 1) + column];
+        let from = from.clamp(h[0], h[1]);
+        let (first, last) = (at(h[0]), at(h[1] + 1));
+        let cells = &self.cells[first..last];
         // `cells[..left]` lie left of `from` and `cells[right..]` right of
         // it, both still to come.
-        let split = cells.partition_point(|c| c.h < from);
+        let split = at(from) - first;
         let (mut left, mut right) = (split, split);
         std::iter::from_fn(move || {
             let on_left = left.checked_sub(1).map(|l| from - cells[l].h);

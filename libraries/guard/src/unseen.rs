@@ -157,7 +157,8 @@ fn outward((first, last): (usize, usize), start: usize) -> impl Iterator<Item = 
 
 /// Whether `p` lies in the closed triangle `t`.
 fn in_triangle(p: P2, t: [P2; 3]) -> bool {
-    let s = [0, 1, 2].map(|i| (t[(i + 1) % 3] - t[i]).perp_dot(p - t[i]));
+    let side = |a: P2, b: P2| (b - a).perp_dot(p - a);
+    let s = [side(t[0], t[1]), side(t[1], t[2]), side(t[2], t[0])];
     (s[0] >= 0.0 && s[1] >= 0.0 && s[2] >= 0.0) || (s[0] <= 0.0 && s[1] <= 0.0 && s[2] <= 0.0)
 }
 
@@ -215,9 +216,11 @@ fn point_triangle_distance(p: P2, t: [P2; 3]) -> f64 {
     // Squared, with one square root at the end: the rounded square root is
     // monotone, so the root of the smallest square is the smallest root
     // (and the smallest of squares, never NaN, is the same in any order).
-    let [e0, e1, e2] = edges.map(|(c, d)| segment_distance2(p, c, d));
-    let [c0, c1, c2] = t.map(|c| (c - p).length_squared());
-    e0.min(e1).min(e2).min(c0.min(c1).min(c2)).sqrt()
+    let end = |(c, d): (P2, P2)| segment_distance2(p, c, d);
+    let corner = |c: P2| (c - p).length_squared();
+    let ends = end(edges[0]).min(end(edges[1])).min(end(edges[2]));
+    ends.min(corner(t[0]).min(corner(t[1])).min(corner(t[2])))
+        .sqrt()
 }
 
 /// The square of `shroud_geometry::math::segment_distance`, computed the
