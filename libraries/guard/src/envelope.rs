@@ -29,6 +29,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::error::GuardError;
+use super::field_of_view::ViewRegion;
 use super::no_return::DarkCones;
 use super::trimmed::Trimmed;
 use glam::DVec3;
@@ -152,6 +153,8 @@ pub struct Envelope {
     /// The region the source cloud's sensor covered, when the cloud said:
     /// space outside it is unseen (`guard::field_of_view`).
     field_of_view: Option<FieldOfView>,
+    /// The same, ready for depth queries.
+    view_region: Option<ViewRegion>,
     /// The directions in which the source cloud's sensor got no return,
     /// when the cloud said: unseen too (`guard::no_return`).
     dark: Option<DarkCones>,
@@ -228,6 +231,7 @@ impl Envelope {
             inv_step: [1.0 / domain.u_step, 1.0 / domain.v_step],
             kept_cells: 0,
             field_of_view: None,
+            view_region: None,
             dark: None,
         };
         for g in 0..cells_t {
@@ -316,6 +320,7 @@ impl Envelope {
             f.validate()
                 .map_err(|e| GuardError::FieldOfView(e.to_string()))?;
         }
+        self.view_region = fov.as_ref().map(ViewRegion::new);
         self.field_of_view = fov;
         Ok(self)
     }
@@ -339,6 +344,11 @@ impl Envelope {
     /// The region the source cloud's sensor covered, if the cloud said.
     pub fn field_of_view(&self) -> Option<&FieldOfView> {
         self.field_of_view.as_ref()
+    }
+
+    /// [`Self::field_of_view`], ready for depth queries.
+    pub(crate) fn view_region(&self) -> Option<&ViewRegion> {
+        self.view_region.as_ref()
     }
 
     /// Deviation of the frame from orthonormal (see the field).

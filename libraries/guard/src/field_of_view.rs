@@ -21,36 +21,97 @@ use shroud_msg::{Aperture, FieldOfView};
 /// How deep `p` lies inside `fov`: the distance from `p` to the nearest point
 /// outside it; 0 or less when `p` is outside.
 pub fn depth_inside(fov: &FieldOfView, p: DVec3) -> f64 {
-    // Renormalised: the wire allows directions within 1e-6 of unit.
-    let axis = DVec3::from_array(fov.axis).normalize();
-    let d = p - DVec3::from_array(fov.apex);
-    let along = d.dot(axis);
-    let range = fov.max_range - d.length();
-    let lateral = match fov.aperture {
-        Aperture::Cone { half_angle } => {
-            let across = (d - along * axis).length();
-            // d sin(alpha - theta) = sin(alpha) along - cos(alpha) across.
-            half_angle.sin() * along - half_angle.cos() * across
-        }
-        Aperture::Rectangle { right, half_angles } => {
-            let right = DVec3::from_array(right);
-            let right = (right - right.dot(axis) * axis).normalize();
-            let up = axis.cross(right);
-            // Each face is the plane through the apex at the half angle from
-            // the axis; its unit normal is (side cos(beta) - axis sin(beta)).
-            let face = |side: f64, beta: f64| beta.sin() * along - beta.cos() * side.abs();
-            face(d.dot(right), half_angles[0]).min(face(d.dot(up), half_angles[1]))
-        }
-    };
-    range.min(lateral)
+    ViewRegion::new(fov).depth(p)
 }
 
-/// Lower bound on the distance from `shape` to the space outside `fov`, in
-/// `[0, cap]`.
-pub(crate) fn clearance_outside(fov: &FieldOfView, shape: &Shape, cap: f64) -> f64 {
+/// A stated field of view ready for depth queries, computed once per cloud:
+/// its unit axis, its image axes, and the sines and cosines of its half
+/// angles (each query used to compute them anew, the same way).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ViewRegion {
+    apex: DVec3,
+    axis: DVec3,
+    max_range: f64,
+    lateral: Lateral,
+}
+
+/// The lateral bound of a [`ViewRegion`].
+#[derive(Debug, Clone, PartialEq)]
+enum Lateral {
+    /// `sin` and `cos` of the half angle.
+    Cone { sin: f64, cos: f64 },
+    /// The image's right and up axes, and per axis the `sin` and `cos` of
+    /// its half angle.
+    Rectangle {
+        right: DVec3,
+        up: DVec3,
+        sin: [f64; 2],
+        cos: [f64; 2],
+    },
+}
+
+impl ViewRegion {
+    pub(crate) fn new(fov: &FieldOfView) -> Self {
+        // Renormalised: the wire allows directions within 1e-6 of unit.
+        let axis = DVec3::from_array(fov.axis).normalize();
+        let lateral = match fov.aperture {
+            Aperture::Cone { half_angle } => Lateral::Cone {
+                sin: half_angle.sin(),
+                cos: half_angle.cos(),
+            },
+            Aperture::Rectangle { right, half_angles } => {
+                let right = DVec3::from_array(right);
+                let right = (right - right.dot(axis) * axis).normalize();
+                Lateral::Rectangle {
+                    right,
+                    up: axis.cross(right),
+                    sin: half_angles.map(f64::sin),
+                    cos: half_angles.map(f64::cos),
+                }
+            }
+        };
+        Self {
+            apex: DVec3::from_array(fov.apex),
+            axis,
+            max_range: fov.max_range,
+            lateral,
+        }
+    }
+
+    /// How deep `p` lies inside: see [`depth_inside`].
+    pub(crate) fn depth(&self, p: DVec3) -> f64 {
+        let d = p - self.apex;
+        let along = d.dot(self.axis);
+        let range = self.max_range - d.length();
+        let lateral = match &self.lateral {
+            Lateral::Cone { sin, cos } => {
+                let across = (d - along * self.axis).length();
+                // d sin(alpha - theta) = sin(alpha) along - cos(alpha) across.
+                sin * along - cos * across
+            }
+            Lateral::Rectangle {
+                right,
+                up,
+                sin,
+                cos,
+            } => {
+                // Each face is the plane through the apex at the half angle
+                // from the axis; its unit normal is (side cos(beta) - axis
+                // sin(beta)).
+                let face = |side: f64, k: usize| sin[k] * along - cos[k] * side.abs();
+                face(d.dot(*right), 0).min(face(d.dot(*up), 1))
+            }
+        };
+        range.min(lateral)
+    }
+}
+
+/// Lower bound on the distance from `shape` to the space outside `region`,
+/// in `[0, cap]`.
+pub(crate) fn clearance_outside(region: &ViewRegion, shape: &Shape, cap: f64) -> f64 {
     let deepest = match shape {
-        Shape::Sphere(s) => depth_inside(fov, s.centre),
-        Shape::Capsule(c) => depth_inside(fov, c.a).min(depth_inside(fov, c.b)),
+        Shape::Sphere(s) => region.depth(s.centre),
+        Shape::Capsule(c) => region.depth(c.a).min(region.depth(c.b)),
     };
     (deepest - shape.radius()).clamp(0.0, cap)
 }
@@ -200,7 +261,7 @@ pub(crate) mod tests {
             let a = apex + random_unit(&mut rng) * rng.random_range(0.0..fov.max_range);
             let b = apex + random_unit(&mut rng) * rng.random_range(0.0..fov.max_range);
             let shape = Shape::Capsule(Capsule { a, b, radius: 0.01 });
-            let got = clearance_outside(&fov, &shape, 10.0);
+            let got = clearance_outside(&ViewRegion::new(&fov), &shape, 10.0);
             // Concave depth: no sample of the segment is shallower than the
             // ends, so the samples' minimum bounds the result from above.
             let sampled = (0..=100)
@@ -214,6 +275,6 @@ pub(crate) mod tests {
             centre: DVec3::from_array(fov.apex) - 5.0 * DVec3::from_array(fov.axis),
             radius: 0.1,
         });
-        assert_eq!(clearance_outside(&fov, &far, 1.0), 0.0);
+        assert_eq!(clearance_outside(&ViewRegion::new(&fov), &far, 1.0), 0.0);
     }
 }

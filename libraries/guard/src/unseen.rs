@@ -40,8 +40,8 @@ impl Envelope {
             // Nothing below can lower it, and it clamps to 0.
             return 0.0;
         }
-        if let Some(fov) = self.field_of_view() {
-            best = best.min(clearance_outside(fov, shape, cap));
+        if let Some(region) = self.view_region() {
+            best = best.min(clearance_outside(region, shape, cap));
         }
         if let Some(dark) = self.dark() {
             best = best.min(dark.clearance(shape, cap.min(best.max(0.0))));
@@ -258,7 +258,8 @@ pub(crate) mod tests {
         let offset = shape.radius() + env.slack(shape, config);
         let mut best = env.distance_outside_domain(a, b) - offset;
         if let Some(fov) = env.field_of_view() {
-            best = best.min(clearance_outside(fov, shape, cap));
+            let region = crate::field_of_view::ViewRegion::new(fov);
+            best = best.min(clearance_outside(&region, shape, cap));
         }
         if let Some(dark) = env.dark() {
             best = best.min(dark.clearance(shape, cap.min(best.max(0.0))));
