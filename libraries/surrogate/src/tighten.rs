@@ -65,13 +65,9 @@ struct Lowering {
     entries: Vec<Entry>,
     /// `f(p_i) - h_i >= 0` per candidate.
     gap: Vec<f64>,
-    /// Lowest value each coefficient may take: the LP's one safety floor far
-    /// below the candidates (`crate::tight::bounds::safety_floor`, the bound of
-    /// `--tight` and of the tightness reference) for a coefficient acting on a
-    /// kept cell with a candidate; `+inf` when there is none (no objective
-    /// weight, or no data to lower it onto: it is not moved). A floor at the
-    /// data (the lowest candidate it acts on) bound along every silhouette and
-    /// left excess volume the optimum does not have (issue 27).
+    /// Lowest value each coefficient may take (see `crate::tight::bounds::floors_of`):
+    /// the lowest candidate in the kept cells it acts on; `+inf` when there is
+    /// none (no objective weight, or no data to lower it onto: it is not moved).
     floor: Vec<f64>,
 }
 
@@ -118,7 +114,6 @@ impl Lowering {
         let sub_max: Vec<[f64; 4]> = (0..sub)
             .map(|q| weights_max(q as f64 / sub as f64, (q + 1) as f64 / sub as f64))
             .collect();
-        let safety_floor = crate::tight::bounds::safety_floor(candidates);
         let mut next = self.start.clone();
         for (row, (l, c)) in located.iter().zip(candidates).enumerate() {
             let (wu, wv) = (
@@ -142,7 +137,7 @@ impl Lowering {
                 next[i] += 1;
                 value += weight * surface.coefficients[i];
                 if kept {
-                    self.floor[i] = safety_floor;
+                    self.floor[i] = self.floor[i].min(c.height);
                 }
             });
             self.gap.push(value - c.height);
@@ -310,16 +305,14 @@ mod tests {
     }
 
     #[test]
-    fn never_lowers_a_coefficient_below_the_safety_floor() {
+    fn never_lowers_a_coefficient_below_the_lowest_candidate_it_acts_on() {
         let candidates = candidates();
-        let floor = crate::tight::bounds::safety_floor(&candidates);
         let lowest = candidates
             .iter()
             .fold(f64::INFINITY, |m, c| m.min(c.height));
-        assert!(floor < lowest);
         let mut surf = UniformCubicSurface::constant(6, 5, 10.0).unwrap();
         lower_onto_candidates(&mut surf, &candidates, &TrimMask::full(5, 4), 1, 50);
-        assert!(surf.coefficients.iter().all(|&b| b >= floor));
+        assert!(surf.coefficients.iter().all(|&b| b >= lowest));
     }
 
     #[test]
