@@ -68,10 +68,15 @@ impl Timings {
     }
 }
 
-/// Median cold-fit times over `configs x runs` fits (sandwiches too if asked),
-/// plus a stream fitted warm and cold, and the floor's median over a run
+/// Median cold-fit times over `configs x runs` fits, plus a stream fitted warm
+/// (and, with `sides_and_streams`, sandwiches and the stream fitted cold), and the floor's median over a run
 /// before each default, plain and sandwich fit.
-fn measure(points: usize, grid: usize, args: &BenchArgs, sandwich: bool) -> Result<Timings> {
+fn measure(
+    points: usize,
+    grid: usize,
+    args: &BenchArgs,
+    sides_and_streams: bool,
+) -> Result<Timings> {
     let (configs, runs) = if args.quick {
         (2, 3)
     } else {
@@ -94,7 +99,7 @@ fn measure(points: usize, grid: usize, args: &BenchArgs, sandwich: bool) -> Resu
             (Tightness::Plain, Sides::Upper, &mut plain),
             (Tightness::Lowered, Sides::Sandwich, &mut sandwiches),
         ] {
-            if sides == Sides::Sandwich && !sandwich {
+            if sides == Sides::Sandwich && !sides_and_streams {
                 continue;
             }
             for _ in 0..runs {
@@ -117,7 +122,7 @@ fn measure(points: usize, grid: usize, args: &BenchArgs, sandwich: bool) -> Resu
             certified(&fit?)?;
             tight.push(ms);
         }
-        let stream = fit_stream(points, grid, config, runs)?;
+        let stream = fit_stream(points, grid, config, runs, sides_and_streams)?;
         warm.extend(stream.warm);
         cold_stream.extend(stream.cold);
     }
@@ -138,10 +143,16 @@ struct Stream {
     cold: Vec<f64>,
 }
 
-/// A 30 Hz stream of frames fitted by one warm-started fitter and, on the same
-/// frames, by a fresh fitter each (the two take turns at being first on a
-/// frame, so that neither always meets the new cloud out of cache).
-fn fit_stream(points: usize, grid: usize, config: usize, frames: usize) -> Result<Stream> {
+/// A 30 Hz stream of frames fitted by one warm-started fitter and, if `cold`,
+/// on the same frames by a fresh fitter each (the two take turns at being
+/// first on a frame, so that neither always meets the new cloud out of cache).
+fn fit_stream(
+    points: usize,
+    grid: usize,
+    config: usize,
+    frames: usize,
+    cold: bool,
+) -> Result<Stream> {
     let scene = MovingSpheres {
         points,
         seed: 1000 + config as u64,
@@ -164,7 +175,10 @@ fn fit_stream(points: usize, grid: usize, config: usize, frames: usize) -> Resul
             certified(&fit?)?;
             Ok(ms)
         };
-        let cold = || -> Result<f64> {
+        let cold_fit = || -> Result<f64> {
+            if !cold {
+                return Ok(f64::NAN);
+            }
             let mut fresh = SurrogateFitter::new(options.clone())?;
             let (fit, ms) = timed(|| fresh.fit(&pts));
             certified(&fit?)?;
@@ -172,15 +186,17 @@ fn fit_stream(points: usize, grid: usize, config: usize, frames: usize) -> Resul
         };
         let (warm_ms, cold_ms) = if frame % 2 == 0 {
             let warm_ms = warm()?;
-            (warm_ms, cold()?)
+            (warm_ms, cold_fit()?)
         } else {
-            let cold_ms = cold()?;
+            let cold_ms = cold_fit()?;
             (warm()?, cold_ms)
         };
         // The first frame warms nothing: both fits are cold.
         if frame > 0 {
             stream.warm.push(warm_ms);
-            stream.cold.push(cold_ms);
+            if cold {
+                stream.cold.push(cold_ms);
+            }
         }
     }
     Ok(stream)

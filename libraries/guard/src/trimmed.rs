@@ -214,9 +214,17 @@ pub(crate) fn triangle_corners(domain: &Domain, h: usize, g: usize, local: &[P2;
     })
 }
 
-/// Per cell, row-major, the rectangle gap to the nearest cell with a
-/// trimmed triangle: per row the nearest such column, then the nearest over
-/// the rows.
+/// Rows searched on each side of a cell for the nearest trimmed cell. Beyond
+/// them the gap is bounded below by the rows alone, which keeps building an
+/// envelope linear in its cells (a 1024 x 1024 grid would otherwise cost
+/// 10^9 steps per surrogate) at the price of a looser bound for cells more
+/// than this many rows from any trimmed one.
+const ROWS_SEARCHED: usize = 32;
+
+/// Per cell, row-major, a lower bound on the rectangle gap to the nearest
+/// cell with a trimmed triangle: per row the nearest such column, then the
+/// nearest over the rows within [`ROWS_SEARCHED`]; exact when that cell lies
+/// within them, else the gap those rows alone leave.
 fn gaps_to_trimmed(
     trim: &TrimMask,
     steps: [f64; 2],
@@ -225,17 +233,19 @@ fn gaps_to_trimmed(
     let rows: Vec<Vec<Option<usize>>> = (0..cells_t)
         .map(|g| columns_to_trimmed((0..cells_s).map(|h| trim.cell_bits(h, g))))
         .collect();
+    let beyond = cells_apart(ROWS_SEARCHED + 1) * steps[1];
     let nearest = |h: usize, g: usize| {
-        let nearest2 = rows
+        let near = g.saturating_sub(ROWS_SEARCHED)..(g + ROWS_SEARCHED + 1).min(cells_t);
+        let nearest2 = rows[near.clone()]
             .iter()
-            .enumerate()
-            .filter_map(|(other, row)| {
+            .zip(near)
+            .filter_map(|(row, other)| {
                 let du = cells_apart(row[h]?) * steps[0];
                 let dv = cells_apart(g.abs_diff(other)) * steps[1];
                 Some(du * du + dv * dv)
             })
             .fold(f64::INFINITY, f64::min);
-        nearest2.sqrt()
+        nearest2.sqrt().min(beyond)
     };
     (0..cells_t)
         .flat_map(|g| (0..cells_s).map(move |h| (h, g)))
@@ -277,6 +287,43 @@ fn columns_to_trimmed(bits: impl Iterator<Item = u8>) -> Vec<Option<usize>> {
 mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
+
+    /// Every cell's gap is at most the true gap to the nearest trimmed cell
+    /// (a lower bound, so a skip it allows is sound), and equal to it when
+    /// that cell is within the rows searched.
+    #[test]
+    fn gaps_bound_the_true_gap_and_match_it_nearby() {
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
+        let (cells_s, cells_t) = (7, 3 * ROWS_SEARCHED);
+        let steps = [0.3, 0.2];
+        for _ in 0..20 {
+            let mut trim = TrimMask::full(cells_s, cells_t);
+            let trimmed: Vec<(usize, usize)> = (0..rng.random_range(1..4))
+                .map(|_| (rng.random_range(0..cells_s), rng.random_range(0..cells_t)))
+                .collect();
+            for &(h, g) in &trimmed {
+                trim.bits[g * cells_s + h] = 0;
+            }
+            let gaps = gaps_to_trimmed(&trim, steps, (cells_s, cells_t));
+            for g in 0..cells_t {
+                for h in 0..cells_s {
+                    let (truth, rows_away) = trimmed
+                        .iter()
+                        .map(|&(h2, g2)| {
+                            let du = cells_apart(h.abs_diff(h2)) * steps[0];
+                            let dv = cells_apart(g.abs_diff(g2)) * steps[1];
+                            ((du * du + dv * dv).sqrt(), g.abs_diff(g2))
+                        })
+                        .fold((f64::INFINITY, 0), |m, x| if x.0 < m.0 { x } else { m });
+                    let gap = gaps[g * cells_s + h];
+                    assert!(gap <= truth, "({h}, {g}): {gap} > {truth}");
+                    if rows_away <= ROWS_SEARCHED {
+                        assert_eq!(gap, truth, "({h}, {g})");
+                    }
+                }
+            }
+        }
+    }
 
     /// A row yields every cell with a trimmed triangle in the column range,
     /// with its triangles, nearest to the given column first.

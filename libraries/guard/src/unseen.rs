@@ -25,6 +25,7 @@ use super::shape::Shape;
 use super::trimmed::{rect_gap, P2};
 use super::Envelope;
 use shroud_geometry::math::segment_distance;
+use shroud_geometry::math::segment_distance_squared;
 
 impl Envelope {
     /// Lower bound on the distance from `shape` to the space this view did
@@ -216,24 +217,11 @@ fn point_triangle_distance(p: P2, t: [P2; 3]) -> f64 {
     // Squared, with one square root at the end: the rounded square root is
     // monotone, so the root of the smallest square is the smallest root
     // (and the smallest of squares, never NaN, is the same in any order).
-    let end = |(c, d): (P2, P2)| segment_distance2(p, c, d);
+    let end = |(c, d): (P2, P2)| segment_distance_squared(p, c, d);
     let corner = |c: P2| (c - p).length_squared();
     let ends = end(edges[0]).min(end(edges[1])).min(end(edges[2]));
     ends.min(corner(t[0]).min(corner(t[1])).min(corner(t[2])))
         .sqrt()
-}
-
-/// The square of `shroud_geometry::math::segment_distance`, computed the
-/// same way up to its final square root.
-fn segment_distance2(q: P2, a: P2, b: P2) -> f64 {
-    let e = b - a;
-    let len2 = e.length_squared();
-    let t = if len2 > 0.0 {
-        ((q - a).dot(e) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (q - (a + e * t)).length_squared()
 }
 
 #[cfg(test)]

@@ -9,5 +9,5 @@ mod sphere_lattice;
 
 pub use banded::{BandedMatrix, BandedSolveError};
 pub use frame::{Frame, FrameError};
-pub use plane::segment_distance;
+pub use plane::{segment_distance, segment_distance_squared};
 pub use sphere_lattice::fibonacci_sphere;

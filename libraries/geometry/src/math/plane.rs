@@ -5,6 +5,12 @@ use glam::DVec2;
 
 /// Distance from `q` to the segment `a b` (a point when they are equal).
 pub fn segment_distance(q: DVec2, a: DVec2, b: DVec2) -> f64 {
+    segment_distance_squared(q, a, b).sqrt()
+}
+
+/// Square of [`segment_distance`], the same bits up to its final square root
+/// (searches compare squares and take one root at the end).
+pub fn segment_distance_squared(q: DVec2, a: DVec2, b: DVec2) -> f64 {
     let e = b - a;
     let len2 = e.length_squared();
     let t = if len2 > 0.0 {
@@ -12,5 +18,5 @@ pub fn segment_distance(q: DVec2, a: DVec2, b: DVec2) -> f64 {
     } else {
         0.0
     };
-    q.distance(a + e * t)
+    (q - (a + e * t)).length_squared()
 }

@@ -29,6 +29,13 @@ const STENCIL: usize = 6;
 /// The stencil's first node, relative to the cell.
 const BELOW: i32 = (STENCIL as i32 - 1) / 2;
 
+/// Lattice cells whose shared data is kept at once. An entry holds a 6 x 6 x 6
+/// stencil (1.7 KB) and its near centres (up to 4 bytes a centre), so this
+/// keeps the cache near 100 MB at worst; issue 27's scene uses about 7,000.
+/// Past it the cache starts over: the data is a pure function of the cell, so
+/// results do not change, only time.
+const MAX_CACHED_CELLS: usize = 1 << 14;
+
 /// The RBF split into an interpolated far field and an exact near sum.
 pub struct SplitField<'a> {
     rbf: &'a Rbf,
@@ -159,9 +166,12 @@ impl<'a> SplitField<'a> {
         CellData { nodes, near }
     }
 
-    /// Prepares the cells of `groups` not seen before: their far-field nodes,
-    /// then their shared data.
+    /// Prepares the cells of `groups` not seen before (or no longer cached):
+    /// their far-field nodes, then their shared data.
     fn prepare(&mut self, groups: &[CellGroup]) {
+        if self.cells.len() + groups.len() > MAX_CACHED_CELLS {
+            self.cells.clear();
+        }
         let fresh: Vec<IVec3> = groups
             .iter()
             .map(|g| g.cell)
@@ -300,7 +310,7 @@ fn dot(a: &[f64; STENCIL], b: &[f64; STENCIL]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-/// Tricubic interpolation of the stencil `nodes` at `u` (cell coordinates in
+/// Degree-5 Lagrange interpolation of the stencil `nodes` at `u` (cell coordinates in
 /// [0, 1)^3) and, with `GRADIENT`, its gradient in cell units.
 fn interpolate<const GRADIENT: bool>(
     nodes: &[[[f64; STENCIL]; STENCIL]; STENCIL],
