@@ -4,7 +4,6 @@
 //! tiles the correction touched are evaluated again, so a surrogate is never
 //! returned uncertified and a correction costs no second pass over the cloud.
 
-mod exact_weights;
 mod gaps;
 mod padded;
 mod pass;

@@ -8,6 +8,7 @@ mod certify;
 mod collinear;
 pub mod elevation;
 mod error;
+mod exact_weights;
 mod fitter;
 pub mod floor;
 mod footprint;

@@ -14,6 +14,8 @@
 
 use super::candidates::Candidate;
 use super::trim::TrimMask;
+use crate::exact_weights::exact_basis_weights;
+use crate::tight::bounds::floors_of_cells;
 use shroud_geometry::spline::{basis_weights, knot_interval, UniformCubicSurface};
 
 /// Fraction of the largest safe move taken in all but the last sweep. A full step
@@ -58,6 +60,47 @@ struct Entry {
     inverse_bound: f64,
 }
 
+/// Every [`Entry::inverse_bound`] a fill can need, computed once: it depends only
+/// on the candidate's sub-cell and on whether its cell is at an end of the grid
+/// (where [`merged`] folds weights together), and a division per entry would cost
+/// more than the rest of filling it.
+struct InverseBounds {
+    /// Keys per axis: four edge cases of each of the `sub` sub-cells.
+    keys: usize,
+    /// At `key_s * keys + key_t`, slot `4 q + r`: `1 / max(mu_q mv_r, 1e-12)`.
+    table: Vec<[f64; 16]>,
+}
+
+impl InverseBounds {
+    fn new(sub: usize) -> Self {
+        let keys = 4 * sub;
+        // Largest weights over each sub-cell, merged as each edge case merges them.
+        let largest: Vec<[f64; 4]> = (0..keys)
+            .map(|key| {
+                let q = key / 4;
+                let w = weights_max(q as f64 / sub as f64, (q + 1) as f64 / sub as f64);
+                merged_at_ends(w, key & 1 != 0, key & 2 != 0)
+            })
+            .collect();
+        let table = (0..keys * keys)
+            .map(|k| {
+                let (mu, mv) = (&largest[k / keys], &largest[k % keys]);
+                std::array::from_fn(|slot| 1.0 / (mu[slot / 4] * mv[slot % 4]).max(1e-12))
+            })
+            .collect();
+        Self { keys, table }
+    }
+
+    /// The bounds of candidate `l`'s 16 slots.
+    #[inline]
+    fn of(&self, l: &Located, cols: usize, rows: usize) -> &[f64; 16] {
+        let key = |q: usize, cell: usize, len: usize| {
+            4 * q + usize::from(cell == 0) + 2 * usize::from(cell + 3 > len)
+        };
+        &self.table[key(l.qu, l.h, cols) * self.keys + key(l.qv, l.g, rows)]
+    }
+}
+
 /// The candidate constraints by coefficient, with the current gaps.
 struct Lowering {
     /// `entries[start[i]..start[i + 1]]` belong to coefficient `i` (row-major).
@@ -72,6 +115,8 @@ struct Lowering {
 }
 
 impl Lowering {
+    /// Fills the columns (each lists its candidates in increasing order), the
+    /// gaps and the floors, one candidate at a time.
     fn new(
         surface: &UniformCubicSurface,
         candidates: &[Candidate],
@@ -79,68 +124,49 @@ impl Lowering {
         sub: usize,
     ) -> Self {
         let (cols, rows) = (surface.cols, surface.rows);
+        let bounds = InverseBounds::new(sub);
         let located: Vec<Located> = candidates
             .iter()
             .map(|c| Located::new(c, cols, rows, sub))
             .collect();
         let start = column_starts(&located, cols, rows);
-        let mut lowering = Self {
-            entries: vec![
-                Entry {
-                    row: 0,
-                    weight: 0.0,
-                    inverse_bound: 0.0
-                };
-                start[cols * rows]
-            ],
-            start,
-            gap: Vec::with_capacity(candidates.len()),
-            floor: vec![f64::INFINITY; cols * rows],
+        let blank = Entry {
+            row: 0,
+            weight: 0.0,
+            inverse_bound: 0.0,
         };
-        lowering.fill(surface, candidates, &located, trim, sub);
-        lowering
-    }
-
-    /// Fills the columns, the gaps and the floors, one candidate at a time.
-    fn fill(
-        &mut self,
-        surface: &UniformCubicSurface,
-        candidates: &[Candidate],
-        located: &[Located],
-        trim: &TrimMask,
-        sub: usize,
-    ) {
-        let (cols, rows) = (surface.cols, surface.rows);
-        let sub_max: Vec<[f64; 4]> = (0..sub)
-            .map(|q| weights_max(q as f64 / sub as f64, (q + 1) as f64 / sub as f64))
-            .collect();
-        let mut next = self.start.clone();
-        for (row, (l, c)) in located.iter().zip(candidates).enumerate() {
+        let mut entries = vec![blank; start[cols * rows]];
+        let mut gap = Vec::with_capacity(candidates.len());
+        let mut lowest = vec![f64::INFINITY; (cols - 1) * (rows - 1)];
+        let mut next = start.clone();
+        for (row, (l, c)) in (0..).zip(located.iter().zip(candidates)) {
             let (wu, wv) = (
-                merged(basis_weights(l.u), l.h, cols),
-                merged(basis_weights(l.v), l.g, rows),
+                merged(exact_basis_weights(l.u), l.h, cols),
+                merged(exact_basis_weights(l.v), l.g, rows),
             );
-            let (mu, mv) = (
-                merged(sub_max[l.qu], l.h, cols),
-                merged(sub_max[l.qv], l.g, rows),
-            );
-            let kept = trim.cell_kept(l.h, l.g);
+            let inverse = bounds.of(l, cols, rows);
             let mut value = 0.0;
             l.for_each_slot(cols, rows, |i, q, r| {
                 let weight = wu[q] * wv[r];
-                let inverse_bound = 1.0 / (mu[q] * mv[r]).max(1e-12);
-                self.entries[next[i]] = Entry {
-                    row: row as u32,
+                entries[next[i]] = Entry {
+                    row,
                     weight,
-                    inverse_bound,
+                    inverse_bound: inverse[4 * q + r],
                 };
                 next[i] += 1;
                 value += weight * surface.coefficients[i];
-                if kept {
-                    self.floor[i] = self.floor[i].min(c.height);
-                }
             });
-            self.gap.push(value - c.height);
+            gap.push(value - c.height);
+            if trim.cell_kept(l.h, l.g) {
+                let cell = &mut lowest[l.g * (cols - 1) + l.h];
+                *cell = cell.min(c.height);
+            }
+        }
+        Self {
+            start,
+            entries,
+            gap,
+            floor: floors_of_cells(cols, rows, &lowest),
         }
     }
 
@@ -232,6 +258,17 @@ impl Located {
     fn for_each_slot(&self, cols: usize, rows: usize, mut f: impl FnMut(usize, usize, usize)) {
         let (q0, q1) = slot_range(self.h, cols);
         let (r0, r1) = slot_range(self.g, rows);
+        if (q0, q1, r0, r1) == (0, 4, 0, 4) {
+            // Away from the ends (almost every cell): fixed bounds, which the
+            // compiler unrolls.
+            let first = (self.g - 1) * cols + self.h - 1;
+            for r in 0..4 {
+                for q in 0..4 {
+                    f(first + r * cols + q, q, r);
+                }
+            }
+            return;
+        }
         for r in r0..r1 {
             for q in q0..q1 {
                 f((self.g + r - 1) * cols + self.h + q - 1, q, r);
@@ -248,12 +285,17 @@ fn slot_range(cell: usize, len: usize) -> (usize, usize) {
 
 /// Weights of the four slots of interval `cell` with those of slots that repeat an
 /// end coefficient (`b_{-1} = b_0`, `b_n = b_{n-1}`) moved onto its first slot.
-fn merged(mut w: [f64; 4], cell: usize, len: usize) -> [f64; 4] {
-    if cell == 0 {
+fn merged(w: [f64; 4], cell: usize, len: usize) -> [f64; 4] {
+    merged_at_ends(w, cell == 0, cell + 3 > len)
+}
+
+/// [`merged`] for a cell that is (or is not) the first and the last.
+fn merged_at_ends(mut w: [f64; 4], first: bool, last: bool) -> [f64; 4] {
+    if first {
         w[1] += w[0];
         w[0] = 0.0;
     }
-    if cell + 3 > len {
+    if last {
         // Slot 3 addresses b_{cell+2} = b_{len-1} = slot 2's coefficient.
         w[2] += w[3];
         w[3] = 0.0;
@@ -275,6 +317,39 @@ fn weights_max(a: f64, b: f64) -> [f64; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The table holds, bit for bit, the reciprocal a division per candidate
+    /// and slot would give, in every cell (the ends included) of small grids.
+    #[test]
+    fn inverse_bounds_are_the_divisions_they_replace() {
+        for sub in [1, 3, 4] {
+            let bounds = InverseBounds::new(sub);
+            for (cols, rows) in [(2, 2), (3, 5), (4, 4), (7, 6)] {
+                for (h, g) in (0..rows - 1).flat_map(|g| (0..cols - 1).map(move |h| (h, g))) {
+                    for (qu, qv) in (0..sub).flat_map(|a| (0..sub).map(move |b| (a, b))) {
+                        let l = Located {
+                            h,
+                            g,
+                            u: 0.0,
+                            v: 0.0,
+                            qu,
+                            qv,
+                        };
+                        let largest = |q: usize| {
+                            weights_max(q as f64 / sub as f64, (q + 1) as f64 / sub as f64)
+                        };
+                        let mu = merged(largest(qu), h, cols);
+                        let mv = merged(largest(qv), g, rows);
+                        let table = bounds.of(&l, cols, rows);
+                        for (q, r) in (0..4).flat_map(|q| (0..4).map(move |r| (q, r))) {
+                            let direct = 1.0 / (mu[q] * mv[r]).max(1e-12);
+                            assert_eq!(table[4 * q + r].to_bits(), direct.to_bits());
+                        }
+                    }
+                }
+            }
+        }
+    }
 
     fn candidates() -> Vec<Candidate> {
         (0..400)

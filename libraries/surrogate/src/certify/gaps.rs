@@ -2,10 +2,10 @@
 //! `UniformCubicSurface::eval` evaluates `f` (same operations, same order), with
 //! the per-point arithmetic in vectorisable loops.
 
-use super::exact_weights::{basis_weights_fma, needs_division};
 use super::padded::PaddedSurface;
 use super::tiles::TileGrid;
 use crate::bins::located::{small_integer, LocatedBlock, BLOCK};
+use crate::exact_weights::{basis_weights_fma, needs_division};
 use crate::model::Locator;
 use shroud_geometry::spline::basis_weights;
 
@@ -31,8 +31,8 @@ pub(super) struct GapBlock {
     pub located: LocatedBlock,
     pub tile: [u32; BLOCK],
     pub gap: [f64; BLOCK],
-    a: [[f64; BLOCK]; 4],
-    b: [[f64; BLOCK]; 4],
+    a: [[f64; 4]; BLOCK],
+    b: [[f64; 4]; BLOCK],
     first: [u32; BLOCK],
 }
 
@@ -42,8 +42,8 @@ impl Default for GapBlock {
             located: LocatedBlock::default(),
             tile: [0; BLOCK],
             gap: [0.0; BLOCK],
-            a: [[0.0; BLOCK]; 4],
-            b: [[0.0; BLOCK]; 4],
+            a: [[0.0; 4]; BLOCK],
+            b: [[0.0; 4]; BLOCK],
             first: [0; BLOCK],
         }
     }
@@ -74,10 +74,7 @@ impl GapBlock {
         let stride = surface.stride as f64;
         let l = &self.located;
         for i in 0..BLOCK {
-            let (a, b) = (basis_weights_fma(l.u[i]), basis_weights_fma(l.v[i]));
-            for q in 0..4 {
-                (self.a[q][i], self.b[q][i]) = (a[q], b[q]);
-            }
+            (self.a[i], self.b[i]) = (basis_weights_fma(l.u[i]), basis_weights_fma(l.v[i]));
             self.first[i] = small_integer(l.g[i] * stride + l.h[i]);
         }
         if (0..BLOCK).fold(false, |any, i| {
@@ -92,9 +89,8 @@ impl GapBlock {
     pub fn measure(&mut self, surface: &PaddedSurface, sign: f64) {
         let l = &self.located;
         for i in 0..l.len {
-            let a = [self.a[0][i], self.a[1][i], self.a[2][i], self.a[3][i]];
-            let b = [self.b[0][i], self.b[1][i], self.b[2][i], self.b[3][i]];
-            self.gap[i] = sign * (surface.eval_in_cell(self.first[i] as usize, &a, &b) - l.w[i]);
+            let (a, b) = (&self.a[i], &self.b[i]);
+            self.gap[i] = sign * (surface.eval_in_cell(self.first[i] as usize, a, b) - l.w[i]);
         }
     }
 
@@ -105,10 +101,7 @@ impl GapBlock {
         let l = &self.located;
         for i in 0..BLOCK {
             if needs_division(l.u[i]) || needs_division(l.v[i]) {
-                let (a, b) = (basis_weights(l.u[i]), basis_weights(l.v[i]));
-                for q in 0..4 {
-                    (self.a[q][i], self.b[q][i]) = (a[q], b[q]);
-                }
+                (self.a[i], self.b[i]) = (basis_weights(l.u[i]), basis_weights(l.v[i]));
             }
         }
     }

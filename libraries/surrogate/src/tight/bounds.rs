@@ -43,11 +43,23 @@ pub fn floors_of(
     grouped: &[(usize, usize, Vec<Candidate>)],
     trim: &TrimMask,
 ) -> Vec<f64> {
-    let mut floors = vec![f64::INFINITY; cols * rows];
+    let mut lowest = vec![f64::INFINITY; (cols - 1) * (rows - 1)];
     for (h, g, list) in grouped.iter().filter(|(h, g, _)| trim.cell_kept(*h, *g)) {
-        let lowest = list.iter().fold(f64::INFINITY, |m, c| m.min(c.height));
-        for i in cell_slots(*h, *g, cols, rows) {
-            floors[i] = floors[i].min(lowest);
+        let cell = &mut lowest[g * (cols - 1) + h];
+        *cell = list.iter().fold(*cell, |m, c| m.min(c.height));
+    }
+    floors_of_cells(cols, rows, &lowest)
+}
+
+/// [`floors_of`] from the lowest constraint of each cell (row-major, `+inf`
+/// for a cell that is trimmed or has none).
+pub fn floors_of_cells(cols: usize, rows: usize, lowest: &[f64]) -> Vec<f64> {
+    let mut floors = vec![f64::INFINITY; cols * rows];
+    let cells = lowest.iter().enumerate().filter(|(_, l)| l.is_finite());
+    for (cell, &low) in cells {
+        let (h, g) = (cell % (cols - 1), cell / (cols - 1));
+        for i in cell_slots(h, g, cols, rows) {
+            floors[i] = floors[i].min(low);
         }
     }
     floors

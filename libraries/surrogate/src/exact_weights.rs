@@ -9,12 +9,11 @@
 //! `basis_weights` gives, which keeps certification bit-identical to
 //! `UniformCubicSurface::eval`.
 
-#[cfg(test)]
 use shroud_geometry::spline::basis_weights;
 
 /// Below this, `x / 6`'s remainder could be subnormal and Markstein's step inexact.
 /// Only `u^3` of a parameter within `2^-300` of a knot gets there.
-pub(super) const SMALLEST_EXACT: f64 = 1.0e-270;
+pub(crate) const SMALLEST_EXACT: f64 = 1.0e-270;
 
 /// `x / 6` correctly rounded for `x == 0` or `|x| >= SMALLEST_EXACT` (and finite).
 #[inline(always)]
@@ -28,7 +27,7 @@ fn div6(x: f64) -> f64 {
 /// Same value as `basis_weights(u)` for `u` in `[0, 1]` unless
 /// `0 < u^3 < SMALLEST_EXACT` (see [`needs_division`]).
 #[inline(always)]
-pub(super) fn basis_weights_fma(u: f64) -> [f64; 4] {
+pub(crate) fn basis_weights_fma(u: f64) -> [f64; 4] {
     let w = 1.0 - u;
     let u2 = u * u;
     let u3 = u2 * u;
@@ -44,8 +43,19 @@ pub(super) fn basis_weights_fma(u: f64) -> [f64; 4] {
 /// positive `u` so small that `u^3` is near the subnormal range. The other three
 /// numerators are at least `2^-159` on `[0, 1]` (`1 - u` is a multiple of `2^-53`).
 #[inline(always)]
-pub(super) fn needs_division(u: f64) -> bool {
+pub(crate) fn needs_division(u: f64) -> bool {
     u > 0.0 && u * u * u < SMALLEST_EXACT
+}
+
+/// `basis_weights(u)`, bit for bit, for every `u` in `[0, 1]`: the divisions
+/// are taken only where Markstein's step could be inexact.
+#[inline(always)]
+pub(crate) fn exact_basis_weights(u: f64) -> [f64; 4] {
+    if needs_division(u) {
+        basis_weights(u)
+    } else {
+        basis_weights_fma(u)
+    }
 }
 
 #[cfg(test)]
