@@ -34,7 +34,9 @@ pub fn certify_surface(
     surface: &mut UniformCubicSurface,
     side: Side,
 ) -> Result<Certificate, FitError> {
-    let mut certificates = certify_sides(points, frame, domain, &mut [(side, surface)])?;
+    let mut tile_of = Vec::new();
+    let mut certificates =
+        certify_sides(points, frame, domain, &mut [(side, surface)], &mut tile_of)?;
     certificates.pop().ok_or(FitError::NoSamples)
 }
 
@@ -42,11 +44,14 @@ pub fn certify_surface(
 /// grid, so one look at the cloud locates and weighs each point once and
 /// measures it against both sides (the certificates are those of separate
 /// certifications, bit for bit). Certificates come in the order of `sides`.
+/// `tile_of` is storage for each point's tile (a fitter keeps it from one
+/// frame to the next; every element is written before it is read).
 pub(crate) fn certify_sides(
     points: &[[f32; 3]],
     frame: &Frame,
     domain: &Domain,
     sides: &mut [(Side, &mut UniformCubicSurface)],
+    tile_of: &mut Vec<u16>,
 ) -> Result<Vec<Certificate>, FitError> {
     let Some((_, first)) = sides.first() else {
         return Ok(Vec::new());
@@ -61,7 +66,8 @@ pub(crate) fn certify_sides(
     let pass = Pass::new(points, domain.locator(frame), first);
     // The tile of every point, so that a correction finds its points again
     // without locating the whole cloud.
-    let mut tile_of = vec![0u16; points.len()];
+    tile_of.truncate(points.len());
+    tile_of.resize(points.len(), 0);
     let measured: Vec<Measured> = sides
         .iter()
         .map(|(side, surface)| Measured {
@@ -69,11 +75,11 @@ pub(crate) fn certify_sides(
             side: *side,
         })
         .collect();
-    let tallies = pass.measure(&measured, Some(&mut tile_of));
+    let tallies = pass.measure(&measured, Some(tile_of));
     sides
         .iter_mut()
         .zip(tallies)
-        .map(|((side, surface), tally)| correct(&pass, &tile_of, frame, surface, *side, tally))
+        .map(|((side, surface), tally)| correct(&pass, tile_of, frame, surface, *side, tally))
         .collect()
 }
 
@@ -284,6 +290,8 @@ mod tests {
             &frame,
             &domain,
             &mut [(Side::Upper, &mut up), (Side::Lower, &mut low)],
+            // Storage left over from a larger cloud: every tile is rewritten.
+            &mut vec![u16::MAX; 3 * points.len()],
         )
         .unwrap();
         assert!(apart

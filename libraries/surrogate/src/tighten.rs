@@ -34,17 +34,63 @@ pub fn lower_onto_candidates(
     sub: usize,
     sweeps: usize,
 ) -> u64 {
-    let mut lowering = Lowering::new(surface, candidates, trim, sub.max(1));
-    let mut moves = 0;
-    for sweep in 0..sweeps {
-        let step = if sweep + 1 == sweeps { 1.0 } else { STEP };
-        let moved = lowering.sweep(surface, step);
-        moves += moved;
-        if moved == 0 {
-            break;
+    let mut buffers = LoweringBuffers::default();
+    lower_reusing(&mut buffers, surface, candidates, trim, sub, sweeps)
+}
+
+/// The constraint matrix's storage, kept by a fitter from one frame to the
+/// next: a stream's matrices have about the same size, so a warm fit writes
+/// its matrix over the last one instead of allocating and clearing a new one
+/// (about 2 MB at 300K points, 20 x 20).
+#[derive(Clone, Default)]
+pub(crate) struct LoweringBuffers {
+    start: Vec<usize>,
+    entries: Vec<Entry>,
+}
+
+impl std::fmt::Debug for LoweringBuffers {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "LoweringBuffers({} entries)", self.entries.len())
+    }
+}
+
+/// [`lower_onto_candidates`] in `buffers`, which it leaves holding this matrix.
+pub(crate) fn lower_reusing(
+    buffers: &mut LoweringBuffers,
+    surface: &mut UniformCubicSurface,
+    candidates: &[Candidate],
+    trim: &TrimMask,
+    sub: usize,
+    sweeps: usize,
+) -> u64 {
+    let storage = std::mem::take(buffers);
+    let mut lowering = Lowering::new(storage, surface, candidates, trim, sub.max(1));
+    let moves = lowering.descend(surface, sweeps);
+    *buffers = lowering.into_buffers();
+    moves
+}
+
+impl Lowering {
+    /// `sweeps` passes of coordinate descent; returns the moves.
+    fn descend(&mut self, surface: &mut UniformCubicSurface, sweeps: usize) -> u64 {
+        let mut moves = 0;
+        for sweep in 0..sweeps {
+            let step = if sweep + 1 == sweeps { 1.0 } else { STEP };
+            let moved = self.sweep(surface, step);
+            moves += moved;
+            if moved == 0 {
+                break;
+            }
+        }
+        moves
+    }
+
+    fn into_buffers(self) -> LoweringBuffers {
+        LoweringBuffers {
+            start: self.start,
+            entries: self.entries,
         }
     }
-    moves
 }
 
 /// One non-zero of the constraint matrix: candidate `row`, the coefficient's
@@ -116,8 +162,9 @@ struct Lowering {
 
 impl Lowering {
     /// Fills the columns (each lists its candidates in increasing order), the
-    /// gaps and the floors, one candidate at a time.
+    /// gaps and the floors, one candidate at a time, in `storage`.
     fn new(
+        storage: LoweringBuffers,
         surface: &UniformCubicSurface,
         candidates: &[Candidate],
         trim: &TrimMask,
@@ -129,13 +176,20 @@ impl Lowering {
             .iter()
             .map(|c| Located::new(c, cols, rows, sub))
             .collect();
-        let start = column_starts(&located, cols, rows);
+        let LoweringBuffers {
+            mut start,
+            mut entries,
+        } = storage;
+        column_starts(&located, cols, rows, &mut start);
+        // Every entry is written below, so those left from the last matrix
+        // need no clearing.
         let blank = Entry {
             row: 0,
             weight: 0.0,
             inverse_bound: 0.0,
         };
-        let mut entries = vec![blank; start[cols * rows]];
+        entries.truncate(start[cols * rows]);
+        entries.resize(start[cols * rows], blank);
         let mut gap = Vec::with_capacity(candidates.len());
         let mut lowest = vec![f64::INFINITY; (cols - 1) * (rows - 1)];
         let mut next = start.clone();
@@ -215,15 +269,15 @@ fn largest_safe_move(column: &[Entry], gap: &[f64], room: f64) -> f64 {
 }
 
 /// `start[i]..start[i + 1]`: where coefficient `i`'s entries go (a counting pass).
-fn column_starts(located: &[Located], cols: usize, rows: usize) -> Vec<usize> {
-    let mut start = vec![0usize; cols * rows + 1];
+fn column_starts(located: &[Located], cols: usize, rows: usize, start: &mut Vec<usize>) {
+    start.clear();
+    start.resize(cols * rows + 1, 0);
     for l in located {
         l.for_each_slot(cols, rows, |i, _, _| start[i + 1] += 1);
     }
     for i in 0..cols * rows {
         start[i + 1] += start[i];
     }
-    start
 }
 
 /// Where a candidate lies: its cell, local parameters and sub-cell.
@@ -388,6 +442,25 @@ mod tests {
         let mut surf = UniformCubicSurface::constant(6, 5, 10.0).unwrap();
         lower_onto_candidates(&mut surf, &candidates, &TrimMask::full(5, 4), 1, 50);
         assert!(surf.coefficients.iter().all(|&b| b >= lowest));
+    }
+
+    /// A fitter's buffers hold the last frame's matrix; lowering over them
+    /// gives the same surface as over fresh storage, whether the last matrix
+    /// was larger or smaller.
+    #[test]
+    fn reused_buffers_give_the_same_lowering() {
+        let all = candidates();
+        let fresh = |c: &[Candidate]| {
+            let mut surf = UniformCubicSurface::constant(6, 5, 10.0).unwrap();
+            let moves = lower_onto_candidates(&mut surf, c, &TrimMask::full(5, 4), 2, 4);
+            (surf, moves)
+        };
+        let mut buffers = LoweringBuffers::default();
+        for c in [&all[..], &all[..50], &all[..], &all[..300]] {
+            let mut surf = UniformCubicSurface::constant(6, 5, 10.0).unwrap();
+            let moves = lower_reusing(&mut buffers, &mut surf, c, &TrimMask::full(5, 4), 2, 4);
+            assert_eq!((surf, moves), fresh(c));
+        }
     }
 
     #[test]
