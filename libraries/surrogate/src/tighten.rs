@@ -15,7 +15,6 @@
 use super::candidates::Candidate;
 use super::trim::TrimMask;
 use crate::exact_weights::exact_basis_weights;
-use crate::tight::bounds::floors_of_cells;
 use shroud_geometry::spline::{basis_weights, knot_interval, UniformCubicSurface};
 
 /// Fraction of the largest safe move taken in all but the last sweep. A full step
@@ -309,26 +308,52 @@ impl Located {
     /// cell: slots that repeat an end coefficient are skipped, their weight
     /// being merged into the first slot (see [`merged`]).
     #[inline]
-    fn for_each_slot(&self, cols: usize, rows: usize, mut f: impl FnMut(usize, usize, usize)) {
-        let (q0, q1) = slot_range(self.h, cols);
-        let (r0, r1) = slot_range(self.g, rows);
-        if (q0, q1, r0, r1) == (0, 4, 0, 4) {
-            // Away from the ends (almost every cell): fixed bounds, which the
-            // compiler unrolls.
-            let first = (self.g - 1) * cols + self.h - 1;
-            for r in 0..4 {
-                for q in 0..4 {
-                    f(first + r * cols + q, q, r);
-                }
+    fn for_each_slot(&self, cols: usize, rows: usize, f: impl FnMut(usize, usize, usize)) {
+        for_each_slot_of_cell(self.h, self.g, cols, rows, f);
+    }
+}
+
+/// Calls `f(coefficient, q, r)` for each distinct coefficient acting on cell
+/// `(h, g)` (see [`Located::for_each_slot`]).
+#[inline]
+fn for_each_slot_of_cell(
+    h: usize,
+    g: usize,
+    cols: usize,
+    rows: usize,
+    mut f: impl FnMut(usize, usize, usize),
+) {
+    let (q0, q1) = slot_range(h, cols);
+    let (r0, r1) = slot_range(g, rows);
+    if (q0, q1, r0, r1) == (0, 4, 0, 4) {
+        // Away from the ends (almost every cell): fixed bounds, which the
+        // compiler unrolls.
+        let first = (g - 1) * cols + h - 1;
+        for r in 0..4 {
+            for q in 0..4 {
+                f(first + r * cols + q, q, r);
             }
-            return;
         }
-        for r in r0..r1 {
-            for q in q0..q1 {
-                f((self.g + r - 1) * cols + self.h + q - 1, q, r);
-            }
+        return;
+    }
+    for r in r0..r1 {
+        for q in q0..q1 {
+            f((g + r - 1) * cols + h + q - 1, q, r);
         }
     }
+}
+
+/// The lowest value each coefficient may take (`crate::tight::bounds::floors_of`)
+/// from the lowest constraint of each cell (row-major, `+inf` for a cell that is
+/// trimmed or has none): the lowest of the cells it acts on.
+pub(crate) fn floors_of_cells(cols: usize, rows: usize, lowest: &[f64]) -> Vec<f64> {
+    let mut floors = vec![f64::INFINITY; cols * rows];
+    let cells = lowest.iter().enumerate().filter(|(_, l)| l.is_finite());
+    for (cell, &low) in cells {
+        let (h, g) = (cell % (cols - 1), cell / (cols - 1));
+        for_each_slot_of_cell(h, g, cols, rows, |i, _, _| floors[i] = floors[i].min(low));
+    }
+    floors
 }
 
 /// Slots `[first, end)` of interval `cell` that address distinct coefficients.

@@ -4,7 +4,6 @@
 //! reference; derived from the same constraint set (the fitter's candidates),
 //! they are the same numbers in both.
 
-use super::cells::cell_slots;
 use crate::{Candidate, TrimMask};
 
 /// How far below the lowest constraint the safety floor lies, in height ranges
@@ -48,21 +47,7 @@ pub fn floors_of(
         let cell = &mut lowest[g * (cols - 1) + h];
         *cell = list.iter().fold(*cell, |m, c| m.min(c.height));
     }
-    floors_of_cells(cols, rows, &lowest)
-}
-
-/// [`floors_of`] from the lowest constraint of each cell (row-major, `+inf`
-/// for a cell that is trimmed or has none).
-pub fn floors_of_cells(cols: usize, rows: usize, lowest: &[f64]) -> Vec<f64> {
-    let mut floors = vec![f64::INFINITY; cols * rows];
-    let cells = lowest.iter().enumerate().filter(|(_, l)| l.is_finite());
-    for (cell, &low) in cells {
-        let (h, g) = (cell % (cols - 1), cell / (cols - 1));
-        for i in cell_slots(h, g, cols, rows) {
-            floors[i] = floors[i].min(low);
-        }
-    }
-    floors
+    crate::tighten::floors_of_cells(cols, rows, &lowest)
 }
 
 /// Upper bound of every coefficient: the highest constraint plus the height range
