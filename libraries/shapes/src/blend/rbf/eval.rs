@@ -33,6 +33,13 @@ impl Rbf {
             .collect()
     }
 
+    /// The centres in the scaled coordinates.
+    pub(super) fn local_centres(&self) -> Vec<DVec3> {
+        (0..self.centres())
+            .map(|i| DVec3::new(self.xs[i], self.ys[i], self.zs[i]))
+            .collect()
+    }
+
     pub(super) fn local(&self, p: DVec3) -> DVec3 {
         (p - self.shift) / self.scale
     }
@@ -40,23 +47,7 @@ impl Rbf {
     /// `s(p)`.
     pub fn value(&self, p: DVec3) -> f64 {
         let q = self.local(p);
-        let n = self.weights.len();
-        let split = n - n % LANES;
-        let mut acc = [0.0f64; LANES];
-        for base in (0..split).step_by(LANES) {
-            for l in 0..LANES {
-                let i = base + l;
-                let (dx, dy, dz) = (q.x - self.xs[i], q.y - self.ys[i], q.z - self.zs[i]);
-                let r2 = dx * dx + dy * dy + dz * dz;
-                acc[l] += self.weights[i] * r2 * r2.sqrt();
-            }
-        }
-        let mut sum = acc.iter().sum::<f64>();
-        for i in split..n {
-            let (dx, dy, dz) = (q.x - self.xs[i], q.y - self.ys[i], q.z - self.zs[i]);
-            let r2 = dx * dx + dy * dy + dz * dz;
-            sum += self.weights[i] * r2 * r2.sqrt();
-        }
+        let [sum, ..] = self.kernel_sums::<false>(q);
         sum + self.poly[0] + self.poly[1] * q.x + self.poly[2] * q.y + self.poly[3] * q.z
     }
 
@@ -64,28 +55,7 @@ impl Rbf {
     /// `grad |y - y_i|^3 = 3 |y - y_i| (y - y_i)`.
     pub fn value_gradient(&self, p: DVec3) -> (f64, DVec3) {
         let q = self.local(p);
-        let n = self.weights.len();
-        let split = n - n % LANES;
-        // LANES independent accumulators, as in `value`, so that the sum
-        // vectorises (one accumulator would serialise on the adds).
-        let mut acc = [[0.0f64; LANES]; 4];
-        for base in (0..split).step_by(LANES) {
-            for l in 0..LANES {
-                let [s, gx, gy, gz] = self.kernel_terms(q, base + l);
-                acc[0][l] += s;
-                acc[1][l] += gx;
-                acc[2][l] += gy;
-                acc[3][l] += gz;
-            }
-        }
-        let mut total = acc.map(|a| a.iter().sum::<f64>());
-        for i in split..n {
-            let terms = self.kernel_terms(q, i);
-            for (t, x) in total.iter_mut().zip(terms) {
-                *t += x;
-            }
-        }
-        let [sum, gx, gy, gz] = total;
+        let [sum, gx, gy, gz] = self.kernel_sums::<true>(q);
         let value =
             sum + self.poly[0] + self.poly[1] * q.x + self.poly[2] * q.y + self.poly[3] * q.z;
         let gradient =
@@ -93,16 +63,40 @@ impl Rbf {
         (value, gradient)
     }
 
-    /// Centre `i`'s term of `s` and of its gradient at the scaled point `q`:
-    /// `w |d|^3` and `3 w |d| d` with `d = q - y_i`.
+    /// `sum_i w_i |q - y_i|^3` and, with `GRADIENT`, `sum_i 3 w_i |d| d` at the
+    /// scaled point `q`. LANES independent accumulators over exact chunks (no
+    /// bounds checks), so that the sum vectorises; one accumulator would
+    /// serialise on the adds.
     #[inline(always)]
-    fn kernel_terms(&self, q: DVec3, i: usize) -> [f64; 4] {
-        let (dx, dy, dz) = (q.x - self.xs[i], q.y - self.ys[i], q.z - self.zs[i]);
-        let r2 = dx * dx + dy * dy + dz * dz;
-        let r = r2.sqrt();
-        let w = self.weights[i];
-        let g = 3.0 * w * r;
-        [w * r2 * r, g * dx, g * dy, g * dz]
+    fn kernel_sums<const GRADIENT: bool>(&self, q: DVec3) -> [f64; 4] {
+        let n = self.weights.len();
+        let whole = n - n % LANES;
+        let mut acc = [[0.0f64; LANES]; 4];
+        let lanes = self.xs[..whole]
+            .chunks_exact(LANES)
+            .zip(self.ys[..whole].chunks_exact(LANES))
+            .zip(self.zs[..whole].chunks_exact(LANES))
+            .zip(self.weights[..whole].chunks_exact(LANES));
+        for (((x, y), z), w) in lanes {
+            for l in 0..LANES {
+                let terms = kernel_terms::<GRADIENT>(q - DVec3::new(x[l], y[l], z[l]), w[l]);
+                let used = if GRADIENT { 4 } else { 1 };
+                for (a, t) in acc.iter_mut().zip(terms).take(used) {
+                    a[l] += t;
+                }
+            }
+        }
+        let mut total = acc.map(|a| a.iter().sum::<f64>());
+        for i in whole..n {
+            let d = q - DVec3::new(self.xs[i], self.ys[i], self.zs[i]);
+            for (t, x) in total
+                .iter_mut()
+                .zip(kernel_terms::<GRADIENT>(d, self.weights[i]))
+            {
+                *t += x;
+            }
+        }
+        total
     }
 
     /// `s` at many points, in parallel.
@@ -124,4 +118,17 @@ impl Rbf {
             f64::INFINITY
         }
     }
+}
+
+/// One centre's term of `s` and (with `GRADIENT`) of its gradient, at offset
+/// `d = q - y_i` with weight `w`: `w |d|^3` and `3 w |d| d`.
+#[inline(always)]
+fn kernel_terms<const GRADIENT: bool>(d: DVec3, w: f64) -> [f64; 4] {
+    let r2 = d.length_squared();
+    let r = r2.sqrt();
+    if !GRADIENT {
+        return [w * r2 * r, 0.0, 0.0, 0.0];
+    }
+    let g = 3.0 * w * r;
+    [w * r2 * r, g * d.x, g * d.y, g * d.z]
 }

@@ -1,10 +1,14 @@
 //! Greedy centre reduction (Carr et al. 2001, Section 3.1, used by Zou et al.,
 //! Section 5): fit on a subset of the constraints, evaluate the residual at all of
 //! them, add the worst-fitted ones as centres, and refit, until every residual is
-//! within tolerance or the centre budget is spent.
+//! within tolerance or the centre budget is spent. The rounds share one growing
+//! Cholesky factor ([`super::grow`]); a round it cannot solve accurately is
+//! solved from scratch ([`Rbf::interpolate`]), as are the rounds after it.
 
 use super::constraints::Constraints;
 use super::eval::Rbf;
+use super::grow::GrowingFit;
+use super::solve::{backward_error, check_distinct, MAX_BACKWARD_ERROR};
 use crate::blend::error::BlendError;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -72,10 +76,9 @@ pub fn fit_greedy(
         .collect();
     centres.iter().for_each(|&i| chosen[i] = true);
     let mut report = GreedyReport::default();
+    let mut solver = Solver::start(constraints, &centres);
     loop {
-        let pts: Vec<DVec3> = centres.iter().map(|&i| constraints.points[i]).collect();
-        let vals: Vec<f64> = centres.iter().map(|&i| constraints.values[i]).collect();
-        let rbf = Rbf::interpolate(&pts, &vals)?;
+        let rbf = solver.solve(constraints, &centres)?;
         report.rounds += 1;
         let residual: Vec<f64> = constraints
             .points
@@ -114,6 +117,60 @@ pub fn fit_greedy(
             centres.push(i);
         }
     }
+}
+
+/// The rounds' solver: a growing factor holding the first `usize` centres, or
+/// none once it failed.
+struct Solver(Option<(GrowingFit, usize)>);
+
+impl Solver {
+    /// A growing fit in the frame of all constraints (fixed across rounds),
+    /// based on four of the first `centres`.
+    fn start(constraints: &Constraints, centres: &[usize]) -> Self {
+        let all = &constraints.points;
+        let shift = all.iter().copied().sum::<DVec3>() / all.len().max(1) as f64;
+        let scale = all.iter().map(|p| p.distance(shift)).fold(0.0, f64::max);
+        if !(scale > 0.0 && scale.is_finite()) {
+            return Self(None);
+        }
+        let (pts, vals) = gather(constraints, centres);
+        let Some((mut fit, base)) = GrowingFit::new(shift, scale, &pts, &vals) else {
+            return Self(None);
+        };
+        let rest: Vec<usize> = (0..centres.len()).filter(|i| !base.contains(i)).collect();
+        let pick = |v: &[f64]| rest.iter().map(|&i| v[i]).collect::<Vec<f64>>();
+        let rest_points: Vec<DVec3> = rest.iter().map(|&i| pts[i]).collect();
+        match fit.extend(&rest_points, &pick(&vals)) {
+            Ok(()) => Self(Some((fit, centres.len()))),
+            Err(_) => Self(None),
+        }
+    }
+
+    /// The RBF on `centres` (the factor's centres and those appended since).
+    fn solve(&mut self, constraints: &Constraints, centres: &[usize]) -> Result<Rbf, BlendError> {
+        if let Some((fit, done)) = &mut self.0 {
+            let (pts, vals) = gather(constraints, &centres[*done..]);
+            if fit.extend(&pts, &vals).is_ok() {
+                *done = centres.len();
+                let rbf = fit.rbf();
+                let accurate = backward_error(&rbf, &fit.values()) <= MAX_BACKWARD_ERROR;
+                if accurate && check_distinct(&rbf.local_centres()).is_ok() {
+                    return Ok(rbf);
+                }
+            }
+            self.0 = None;
+        }
+        let (pts, vals) = gather(constraints, centres);
+        Rbf::interpolate(&pts, &vals)
+    }
+}
+
+/// The points and values of the constraints `indices`.
+fn gather(constraints: &Constraints, indices: &[usize]) -> (Vec<DVec3>, Vec<f64>) {
+    indices
+        .iter()
+        .map(|&i| (constraints.points[i], constraints.values[i]))
+        .unzip()
 }
 
 /// `0..n` in a fixed pseudo-random order (Fisher-Yates with a PCG-style LCG), so

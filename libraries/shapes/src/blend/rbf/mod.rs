@@ -9,6 +9,8 @@ mod centre_bins;
 mod constraints;
 mod eval;
 mod greedy;
+mod grow;
+mod projection;
 mod solve;
 mod split;
 mod split_kernel;

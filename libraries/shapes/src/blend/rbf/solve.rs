@@ -8,10 +8,11 @@ use crate::blend::error::BlendError;
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 use glam::DVec3;
+use rayon::prelude::*;
 use shroud_geometry::cloud::{fit_plane, NeighbourIndex};
 
 /// Backward error above which a solution is rejected.
-const MAX_BACKWARD_ERROR: f64 = 1e-9;
+pub(super) const MAX_BACKWARD_ERROR: f64 = 1e-9;
 
 impl Rbf {
     /// Interpolates `values` at `centres` exactly (up to rounding).
@@ -49,44 +50,43 @@ impl Rbf {
             });
         }
         let local: Vec<DVec3> = centres.iter().map(|&c| (c - shift) / scale).collect();
-        // Coincident centres make two equal rows: singular.
-        let index = NeighbourIndex::new(local.clone());
-        if local
-            .iter()
-            .any(|&p| index.nearest(p, 2).get(1).is_some_and(|&(_, d)| d < 1e-9))
-        {
-            return Err(BlendError::SingularSystem {
-                residual: f64::INFINITY,
-            });
-        }
+        check_distinct(&local)?;
         let m = n + 4;
         let matrix = Mat::<f64>::from_fn(m, m, |i, j| entry(&local, i, j));
         let rhs = Mat::<f64>::from_fn(m, 1, |i, _| if i < n { values[i] } else { 0.0 });
-        let mut solution = matrix.lblt(Side::Lower).solve(&rhs);
-        let mut error = backward_error(&matrix, &solution, &rhs);
-        if !(error <= MAX_BACKWARD_ERROR) {
-            solution = matrix.partial_piv_lu().solve(&rhs);
-            error = backward_error(&matrix, &solution, &rhs);
-        }
-        if !(error <= MAX_BACKWARD_ERROR) {
-            return Err(BlendError::SingularSystem { residual: error });
-        }
-        let weights: Vec<f64> = (0..n).map(|i| solution[(i, 0)]).collect();
-        Ok(Rbf {
+        let from_solution = |solution: Mat<f64>| Rbf {
             shift,
             scale,
             xs: local.iter().map(|p| p.x).collect(),
             ys: local.iter().map(|p| p.y).collect(),
             zs: local.iter().map(|p| p.z).collect(),
-            weights,
-            poly: [
-                solution[(n, 0)],
-                solution[(n + 1, 0)],
-                solution[(n + 2, 0)],
-                solution[(n + 3, 0)],
-            ],
-        })
+            weights: (0..n).map(|i| solution[(i, 0)]).collect(),
+            poly: std::array::from_fn(|k| solution[(n + k, 0)]),
+        };
+        let mut rbf = from_solution(matrix.lblt(Side::Lower).solve(&rhs));
+        if !(backward_error(&rbf, values) <= MAX_BACKWARD_ERROR) {
+            rbf = from_solution(matrix.partial_piv_lu().solve(&rhs));
+        }
+        let error = backward_error(&rbf, values);
+        if !(error <= MAX_BACKWARD_ERROR) {
+            return Err(BlendError::SingularSystem { residual: error });
+        }
+        Ok(rbf)
     }
+}
+
+/// Coincident centres make two equal rows: singular.
+pub(super) fn check_distinct(local: &[DVec3]) -> Result<(), BlendError> {
+    let index = NeighbourIndex::new(local.to_vec());
+    if local
+        .iter()
+        .any(|&p| index.nearest(p, 2).get(1).is_some_and(|&(_, d)| d < 1e-9))
+    {
+        return Err(BlendError::SingularSystem {
+            residual: f64::INFINITY,
+        });
+    }
+    Ok(())
 }
 
 /// Entry `(i, j)` of the symmetric saddle-point matrix.
@@ -109,23 +109,53 @@ fn poly_term(p: DVec3, k: usize) -> f64 {
     }
 }
 
-/// Normwise backward error `|Ax - b| / (|A| |x| + |b|)` in the max norm; NaN-safe
+/// Normwise backward error `|K x - b| / (|K| |x| + |b|)` in the max norm of
+/// `rbf` as a solution of Eq. 1's saddle-point system `K` at its own centres
+/// with `values`, from the kernel sums (without forming `K`); NaN-safe
 /// (non-finite solutions give infinity).
-fn backward_error(a: &Mat<f64>, x: &Mat<f64>, b: &Mat<f64>) -> f64 {
-    let ax = a * x;
-    let m = a.nrows();
+pub(super) fn backward_error(rbf: &Rbf, values: &[f64]) -> f64 {
+    let n = rbf.centres();
+    if values.len() != n {
+        return f64::INFINITY;
+    }
+    // |A| row sums: the same kernel sums with unit weights and no polynomial.
+    let ones = Rbf {
+        weights: vec![1.0; n],
+        poly: [0.0; 4],
+        ..rbf.clone()
+    };
+    let local = rbf.local_centres();
+    let rows: Vec<(f64, f64)> = local
+        .par_iter()
+        .with_min_len(32)
+        .zip(values)
+        .map(|(&q, &f)| {
+            let p = rbf.shift + rbf.scale * q;
+            let row = ones.value(p) + 1.0 + q.x.abs() + q.y.abs() + q.z.abs();
+            (rbf.value(p) - f, row)
+        })
+        .collect();
     let mut residual: f64 = 0.0;
-    let (mut x_norm, mut b_norm, mut a_norm): (f64, f64, f64) = (0.0, 0.0, 0.0);
-    for i in 0..m {
-        let r = ax[(i, 0)] - b[(i, 0)];
-        if !r.is_finite() || !x[(i, 0)].is_finite() {
-            return f64::INFINITY;
-        }
+    let mut a_norm: f64 = 0.0;
+    for &(r, row) in &rows {
         residual = residual.max(r.abs());
-        x_norm = x_norm.max(x[(i, 0)].abs());
-        b_norm = b_norm.max(b[(i, 0)].abs());
-        let row: f64 = (0..m).map(|j| a[(i, j)].abs()).sum();
         a_norm = a_norm.max(row);
+    }
+    // The side condition's rows: P^T lambda = 0.
+    for k in 0..4 {
+        let term = |i: usize| [1.0, local[i].x, local[i].y, local[i].z][k];
+        let r: f64 = (0..n).map(|i| rbf.weights[i] * term(i)).sum();
+        residual = residual.max(r.abs());
+        a_norm = a_norm.max((0..n).map(|i| term(i).abs()).sum());
+    }
+    let x_norm = rbf
+        .weights
+        .iter()
+        .chain(&rbf.poly)
+        .fold(0.0f64, |m, w| m.max(w.abs()));
+    let b_norm = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if !(residual.is_finite() && x_norm.is_finite()) {
+        return f64::INFINITY;
     }
     let denominator = a_norm * x_norm + b_norm;
     if denominator > 0.0 {

@@ -70,9 +70,7 @@ impl<'a> SplitField<'a> {
     pub fn new(rbf: &'a Rbf, step: f64, radius: f64) -> Self {
         let step = step / rbf.scale;
         let radius = (radius / rbf.scale).max(3.0 * step);
-        let centres = (0..rbf.centres())
-            .map(|i| DVec3::new(rbf.xs[i], rbf.ys[i], rbf.zs[i]))
-            .collect();
+        let centres = rbf.local_centres();
         Self {
             rbf,
             kernel: SplitKernel::new(radius),
