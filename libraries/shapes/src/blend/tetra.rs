@@ -13,6 +13,7 @@ use super::error::BlendError;
 use super::lattice::{cell_of, pack, Fast};
 use super::rbf::{BatchField, Rbf, SplitField};
 use glam::{DVec3, IVec3};
+use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
 
 /// Points on the sampled transition surface T_R with unit normals (toward +s,
@@ -82,7 +83,9 @@ struct Crossed {
 
 /// What the walk over the cells found.
 struct Walk {
-    crossed: Vec<Crossed>,
+    /// Refined points and their normals (zero where the gradient vanished).
+    refined: Vec<(DVec3, DVec3)>,
+    crossed: usize,
     visited: usize,
     evaluations: usize,
 }
@@ -117,13 +120,11 @@ pub fn sample_zero_set_with(
     check_cell(cell)?;
     let grid = Grid { origin, cell };
     let walk = follow_surface(field, grid, seeds, inside, max_cells)?;
-    if walk.crossed.is_empty() {
+    if walk.crossed == 0 {
         return Err(BlendError::NoTransitionSurface);
     }
-    let (starts, edges) = edge_points(&walk.crossed, grid);
-    let refined = refine(field, &starts, &edges);
-    let evaluations = walk.evaluations + starts.len();
-    let (points, normals) = refined
+    let (points, normals) = walk
+        .refined
         .into_iter()
         .filter(|(_, n)| *n != DVec3::ZERO)
         .unzip();
@@ -131,8 +132,8 @@ pub fn sample_zero_set_with(
         points,
         normals,
         cells_visited: walk.visited,
-        cells_crossed: walk.crossed.len(),
-        evaluations,
+        cells_crossed: walk.crossed,
+        evaluations: walk.evaluations,
     })
 }
 
@@ -149,6 +150,8 @@ fn check_cell(cell: f64) -> Result<(), BlendError> {
 
 /// The continuation: a breadth-first walk from the seeds' cells through the
 /// faces of every crossed cell (and every seed cell), one layer at a time.
+/// Each layer's crossed cells are refined right away, while the evaluator's
+/// data for their cells is still at hand.
 fn follow_surface(
     field: &mut dyn BatchField,
     grid: Grid,
@@ -159,7 +162,9 @@ fn follow_surface(
     let mut values: HashMap<u64, f64, Fast> = HashMap::default();
     let mut visited: HashSet<u64, Fast> = HashSet::default();
     let mut outside: HashSet<u64, Fast> = HashSet::default();
-    let mut crossed = Vec::new();
+    let mut crossed = 0;
+    let mut edges: HashSet<(u64, u8), Fast> = HashSet::default();
+    let mut refined = Vec::new();
     let mut frontier: Vec<(IVec3, bool)> = Vec::new();
     for &s in seeds {
         if let Some(c) = cell_of(s - grid.origin, grid.cell) {
@@ -175,12 +180,15 @@ fn follow_surface(
         }
         evaluations += evaluate_corners(field, grid, &frontier, &mut values);
         let mut next = Vec::new();
+        let mut layer = Vec::new();
+        let mut candidates = Vec::new();
+        let mut queued: HashSet<u64, Fast> = HashSet::default();
         for (c, seed) in frontier {
             let corners = corner_values(&values, c);
             let positive = corners.iter().filter(|&&s| s >= 0.0).count();
             let crosses = positive != 0 && positive != 8;
             if crosses {
-                crossed.push(Crossed { cell: c, corners });
+                layer.push(Crossed { cell: c, corners });
             }
             if !(crosses || seed) {
                 continue;
@@ -188,20 +196,33 @@ fn follow_surface(
             for f in FACES {
                 let n = c + f;
                 let key = pack(n);
-                if visited.contains(&key) || outside.contains(&key) {
-                    continue;
-                }
-                if inside(grid.centre(n)) {
-                    visited.insert(key);
-                    next.push((n, false));
-                } else {
-                    outside.insert(key);
+                if !visited.contains(&key) && !outside.contains(&key) && queued.insert(key) {
+                    candidates.push(n);
                 }
             }
         }
+        // The region test (a polygon distance) in parallel, in walk order.
+        let within: Vec<bool> = candidates
+            .par_iter()
+            .with_min_len(256)
+            .map(|&n| inside(grid.centre(n)))
+            .collect();
+        for (n, within) in candidates.into_iter().zip(within) {
+            if within {
+                visited.insert(pack(n));
+                next.push((n, false));
+            } else {
+                outside.insert(pack(n));
+            }
+        }
+        crossed += layer.len();
+        let (starts, lengths) = edge_points(&layer, grid, &mut edges);
+        evaluations += starts.len();
+        refined.extend(refine(field, &starts, &lengths));
         frontier = next;
     }
     Ok(Walk {
+        refined,
         crossed,
         visited: visited.len(),
         evaluations,
@@ -242,10 +263,13 @@ fn corner_values(values: &HashMap<u64, f64, Fast>, c: IVec3) -> [f64; 8] {
     })
 }
 
-/// One point per sign-changing tetrahedron edge (deduplicated), by linear
-/// interpolation, with its edge's length.
-fn edge_points(crossed: &[Crossed], grid: Grid) -> (Vec<DVec3>, Vec<f64>) {
-    let mut edges: HashSet<(u64, u8), Fast> = HashSet::default();
+/// One point per sign-changing tetrahedron edge not in `edges` yet (which it
+/// joins), by linear interpolation, with its edge's length.
+fn edge_points(
+    crossed: &[Crossed],
+    grid: Grid,
+    edges: &mut HashSet<(u64, u8), Fast>,
+) -> (Vec<DVec3>, Vec<f64>) {
     let mut starts = Vec::new();
     let mut lengths = Vec::new();
     for Crossed { cell: c, corners } in crossed {

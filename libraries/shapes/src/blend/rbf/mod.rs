@@ -10,6 +10,7 @@ mod constraints;
 mod eval;
 mod greedy;
 mod grow;
+mod near_sum;
 mod projection;
 mod solve;
 mod split;

@@ -14,6 +14,7 @@
 use super::batch::BatchField;
 use super::centre_bins::CentreBins;
 use super::eval::Rbf;
+use super::near_sum::NearCentres;
 use super::split_kernel::SplitKernel;
 use crate::blend::lattice::{cell_of, pack, Fast};
 use glam::{DVec3, IVec3};
@@ -30,11 +31,14 @@ const STENCIL: usize = 6;
 const BELOW: i32 = (STENCIL as i32 - 1) / 2;
 
 /// Lattice cells whose shared data is kept at once. An entry holds a 6 x 6 x 6
-/// stencil (1.7 KB) and its near centres (up to 4 bytes a centre), so this
-/// keeps the cache near 100 MB at worst; issue 27's scene uses about 7,000.
-/// Past it the cache starts over: the data is a pure function of the cell, so
-/// results do not change, only time.
+/// stencil (1.7 KB) and its near centres (32 bytes a centre): issue 27's scene
+/// uses about 7,000 cells of about 200 centres. Past either bound the cache
+/// starts over: the data is a pure function of the cell, so results do not
+/// change, only time.
 const MAX_CACHED_CELLS: usize = 1 << 14;
+
+/// Near-centre entries kept at once, over all cached cells (64 MB).
+const MAX_CACHED_NEAR: usize = 1 << 21;
 
 /// The RBF split into an interpolated far field and an exact near sum.
 pub struct SplitField<'a> {
@@ -48,6 +52,10 @@ pub struct SplitField<'a> {
     far: HashMap<u64, f64, Fast>,
     /// What the points of each cell seen so far share.
     cells: HashMap<u64, CellData, Fast>,
+    /// Near-centre entries held by `cells`.
+    cached_near: usize,
+    /// Batches evaluated so far.
+    batches: u64,
 }
 
 /// The points of one batch that fall in one lattice cell.
@@ -61,7 +69,9 @@ struct CellGroup {
 /// centres near enough to matter.
 struct CellData {
     nodes: [[[f64; STENCIL]; STENCIL]; STENCIL],
-    near: Vec<u32>,
+    near: NearCentres,
+    /// The last batch that used the cell.
+    used: u64,
 }
 
 impl<'a> SplitField<'a> {
@@ -78,6 +88,8 @@ impl<'a> SplitField<'a> {
             centres: CentreBins::new(centres, radius),
             far: HashMap::default(),
             cells: HashMap::default(),
+            cached_near: 0,
+            batches: 0,
         }
     }
 
@@ -161,15 +173,24 @@ impl<'a> SplitField<'a> {
             .centres
             .within(centre, reach)
             .unwrap_or_else(|| (0..self.rbf.centres() as u32).collect());
-        CellData { nodes, near }
+        CellData {
+            nodes,
+            near: NearCentres::new(self.rbf, &near),
+            used: 0,
+        }
     }
 
     /// Prepares the cells of `groups` not seen before (or no longer cached):
     /// their far-field nodes, then their shared data.
     fn prepare(&mut self, groups: &[CellGroup]) {
-        if self.cells.len() + groups.len() > MAX_CACHED_CELLS {
-            self.cells.clear();
+        self.batches += 1;
+        let batch = self.batches;
+        for g in groups {
+            if let Some(d) = self.cells.get_mut(&pack(g.cell)) {
+                d.used = batch;
+            }
         }
+        self.evict(groups.len());
         let fresh: Vec<IVec3> = groups
             .iter()
             .map(|g| g.cell)
@@ -181,8 +202,28 @@ impl<'a> SplitField<'a> {
             .with_min_len(4)
             .map(|&c| self.cell_data(c))
             .collect();
-        for (c, d) in fresh.into_iter().zip(data) {
+        for (c, mut d) in fresh.into_iter().zip(data) {
+            d.used = batch;
+            self.cached_near += d.near.len();
             self.cells.insert(pack(c), d);
+        }
+    }
+
+    /// Keeps the cache within its bounds before `incoming` cells arrive: first
+    /// drops the cells the current batch does not use (a walk moves on, its
+    /// old layers are not seen again), then, if still needed, everything.
+    fn evict(&mut self, incoming: usize) {
+        let over = |this: &Self| {
+            this.cells.len() + incoming > MAX_CACHED_CELLS || this.cached_near > MAX_CACHED_NEAR
+        };
+        if over(self) {
+            let batch = self.batches;
+            self.cells.retain(|_, d| d.used == batch);
+            self.cached_near = self.cells.values().map(|d| d.near.len()).sum();
+        }
+        if over(self) {
+            self.cells.clear();
+            self.cached_near = 0;
         }
     }
 
@@ -195,27 +236,10 @@ impl<'a> SplitField<'a> {
     ) -> (f64, DVec3) {
         let u = q / self.step - cell.as_dvec3();
         let (far, far_gradient) = interpolate::<GRADIENT>(&data.nodes, u);
-        let (near, near_gradient) = self.near_sum::<GRADIENT>(data, q);
+        let (near, near_gradient) = data.near.sum::<GRADIENT>(&self.kernel, q);
         let p = self.rbf.poly;
         let value = far + near + p[0] + p[1] * q.x + p[2] * q.y + p[3] * q.z;
         let gradient = far_gradient / self.step + near_gradient + DVec3::new(p[1], p[2], p[3]);
-        (value, gradient)
-    }
-
-    /// The near part at scaled point `q`: the near kernel over the cell's centres.
-    fn near_sum<const GRADIENT: bool>(&self, data: &CellData, q: DVec3) -> (f64, DVec3) {
-        let r = self.rbf;
-        let mut value = 0.0;
-        let mut gradient = DVec3::ZERO;
-        for &i in &data.near {
-            let i = i as usize;
-            let d = q - DVec3::new(r.xs[i], r.ys[i], r.zs[i]);
-            let (k, f) = self.kernel.near(d.length_squared());
-            value += r.weights[i] * k;
-            if GRADIENT {
-                gradient += (r.weights[i] * f) * d;
-            }
-        }
         (value, gradient)
     }
 
@@ -283,23 +307,41 @@ fn stencil(cell: IVec3) -> impl Iterator<Item = IVec3> {
     (0..n * n * n).map(move |k| cell + IVec3::new(k / (n * n), (k / n) % n, k % n) - BELOW)
 }
 
+/// `1 / prod_(k != j) (n_j - n_k)` for the stencil's nodes `n_j = j - BELOW`
+/// (-2..3): the Lagrange weights' constant denominators, 1/(-120), 1/24,
+/// 1/(-12), 1/12, 1/(-24), 1/120.
+const INVERSE_DENOMINATORS: [f64; STENCIL] = [
+    -1.0 / 120.0,
+    1.0 / 24.0,
+    -1.0 / 12.0,
+    1.0 / 12.0,
+    -1.0 / 24.0,
+    1.0 / 120.0,
+];
+
 /// Lagrange weights of the stencil's nodes (at `j - BELOW`) at `u` in [0, 1),
-/// and their derivatives.
+/// and their derivatives: `w_j = prod_(k != j) (u - n_k) / d_j`, from prefix
+/// and suffix products of the factors `u - n_k` carried with their
+/// derivatives (dual numbers), so O(STENCIL) work instead of O(STENCIL^2).
 fn lagrange_weights(u: f64) -> ([f64; STENCIL], [f64; STENCIL]) {
-    let node = |j: usize| j as f64 - f64::from(BELOW);
+    // (value, derivative) of a product of factors (u - n_k).
+    let times = |(p, dp): (f64, f64), k: usize| {
+        let a = u - (k as f64 - f64::from(BELOW));
+        (p * a, dp * a + p)
+    };
+    let mut prefix = [(1.0, 0.0); STENCIL];
+    let mut suffix = [(1.0, 0.0); STENCIL];
+    for j in 1..STENCIL {
+        prefix[j] = times(prefix[j - 1], j - 1);
+        let k = STENCIL - 1 - j;
+        suffix[k] = times(suffix[k + 1], k + 1);
+    }
     let mut weights = [0.0; STENCIL];
     let mut derivatives = [0.0; STENCIL];
     for j in 0..STENCIL {
-        let mut w = 1.0;
-        let mut dw = 0.0;
-        for k in (0..STENCIL).filter(|&k| k != j) {
-            let scale = 1.0 / (node(j) - node(k));
-            // Product rule, one factor at a time.
-            dw = dw * (u - node(k)) * scale + w * scale;
-            w *= (u - node(k)) * scale;
-        }
-        weights[j] = w;
-        derivatives[j] = dw;
+        let ((p, dp), (q, dq)) = (prefix[j], suffix[j]);
+        weights[j] = p * q * INVERSE_DENOMINATORS[j];
+        derivatives[j] = (dp * q + p * dq) * INVERSE_DENOMINATORS[j];
     }
     (weights, derivatives)
 }

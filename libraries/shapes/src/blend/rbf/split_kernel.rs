@@ -29,6 +29,8 @@ pub(crate) struct SplitKernel {
     radius: f64,
     radius2: f64,
     radius3: f64,
+    /// `1 / R^2`: a multiply in the hot loop instead of a divide.
+    inverse_radius2: f64,
 }
 
 impl SplitKernel {
@@ -37,6 +39,7 @@ impl SplitKernel {
             radius,
             radius2: radius * radius,
             radius3: radius * radius * radius,
+            inverse_radius2: 1.0 / (radius * radius),
         }
     }
 
@@ -47,7 +50,7 @@ impl SplitKernel {
     /// `R^3 G(t)` and `2 R G'(t)` at `t = s / R^2`.
     #[inline(always)]
     fn smooth(&self, s: f64) -> (f64, f64) {
-        let t = s / self.radius2;
+        let t = s * self.inverse_radius2;
         let (mut g, mut dg) = (0.0, 0.0);
         for (k, b) in SMOOTHING.iter().enumerate().rev() {
             g = g * t + b;
@@ -72,15 +75,22 @@ impl SplitKernel {
 
     /// The near part's value and gradient factor at squared distance `s` (zero
     /// from `R` on).
+    #[cfg(test)]
+    fn near(&self, s: f64) -> (f64, f64) {
+        let (value, factor) = self.near_lanes([s; 4]);
+        (value[0], factor[0])
+    }
+
+    /// [`Self::near`] at four squared distances at once, written lane-wise
+    /// (each step an array map) so that it compiles to vector instructions.
     #[inline(always)]
-    pub(crate) fn near(&self, s: f64) -> (f64, f64) {
-        let r = s.sqrt();
-        let (smooth, dsmooth) = self.smooth(s);
-        if s < self.radius2 {
-            (s * r - smooth, 3.0 * r - dsmooth)
-        } else {
-            (0.0, 0.0)
-        }
+    pub(crate) fn near_lanes(&self, s: [f64; 4]) -> ([f64; 4], [f64; 4]) {
+        let r: [f64; 4] = std::array::from_fn(|l| s[l].sqrt());
+        let smooth: [(f64, f64); 4] = std::array::from_fn(|l| self.smooth(s[l]));
+        let inside = |l: usize, v: f64| if s[l] < self.radius2 { v } else { 0.0 };
+        let value = std::array::from_fn(|l| inside(l, s[l] * r[l] - smooth[l].0));
+        let factor = std::array::from_fn(|l| inside(l, 3.0 * r[l] - smooth[l].1));
+        (value, factor)
     }
 }
 
