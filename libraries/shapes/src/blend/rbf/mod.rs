@@ -15,6 +15,8 @@ mod projection;
 mod solve;
 mod split;
 mod split_kernel;
+#[cfg(test)]
+mod split_props;
 
 pub use batch::{BatchField, ExactField};
 pub use constraints::{build_constraints, Constraints};
