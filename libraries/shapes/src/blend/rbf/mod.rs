@@ -8,6 +8,7 @@ mod batch;
 mod centre_bins;
 mod constraints;
 mod eval;
+mod far_lattice;
 mod greedy;
 mod grow;
 mod near_sum;

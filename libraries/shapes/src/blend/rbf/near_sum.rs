@@ -55,20 +55,24 @@ impl NearCentres {
         for (((x, y), z), w) in lanes {
             // Lane-wise array steps (rather than one lane at a time): the
             // gradient's four sums then vectorise too.
-            let dx: [f64; LANES] = std::array::from_fn(|l| q.x - x[l]);
-            let dy: [f64; LANES] = std::array::from_fn(|l| q.y - y[l]);
-            let dz: [f64; LANES] = std::array::from_fn(|l| q.z - z[l]);
-            let s = std::array::from_fn(|l| dx[l] * dx[l] + dy[l] * dy[l] + dz[l] * dz[l]);
+            let (mut dx, mut dy, mut dz, mut s) =
+                ([0.0; LANES], [0.0; LANES], [0.0; LANES], [0.0; LANES]);
+            for l in 0..LANES {
+                dx[l] = q.x - x[l];
+                dy[l] = q.y - y[l];
+                dz[l] = q.z - z[l];
+                s[l] = dx[l] * dx[l] + dy[l] * dy[l] + dz[l] * dz[l];
+            }
             let (k, f) = kernel.near_lanes(s);
             for l in 0..LANES {
                 acc[0][l] += w[l] * k[l];
             }
             if GRADIENT {
-                let g: [f64; LANES] = std::array::from_fn(|l| w[l] * f[l]);
                 for l in 0..LANES {
-                    acc[1][l] += g[l] * dx[l];
-                    acc[2][l] += g[l] * dy[l];
-                    acc[3][l] += g[l] * dz[l];
+                    let g = w[l] * f[l];
+                    acc[1][l] += g * dx[l];
+                    acc[2][l] += g * dy[l];
+                    acc[3][l] += g * dz[l];
                 }
             }
         }

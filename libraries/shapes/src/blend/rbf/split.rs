@@ -14,12 +14,13 @@
 use super::batch::BatchField;
 use super::centre_bins::CentreBins;
 use super::eval::Rbf;
+use super::far_lattice::FarLattice;
 use super::near_sum::NearCentres;
 use super::split_kernel::SplitKernel;
 use crate::blend::lattice::{cell_of, pack, Fast};
 use glam::{DVec3, IVec3};
 use rayon::prelude::*;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 const LANES: usize = 4;
 
@@ -49,7 +50,7 @@ pub struct SplitField<'a> {
     /// The centres (scaled), for the near sums.
     centres: CentreBins,
     /// The far field at the lattice nodes computed so far.
-    far: HashMap<u64, f64, Fast>,
+    far: FarLattice,
     /// What the points of each cell seen so far share.
     cells: HashMap<u64, CellData, Fast>,
     /// Near-centre entries held by `cells`.
@@ -86,7 +87,7 @@ impl<'a> SplitField<'a> {
             kernel: SplitKernel::new(radius),
             step,
             centres: CentreBins::new(centres, radius),
-            far: HashMap::default(),
+            far: FarLattice::default(),
             cells: HashMap::default(),
             cached_near: 0,
             batches: 0,
@@ -133,38 +134,19 @@ impl<'a> SplitField<'a> {
 
     /// Computes the far field at every stencil node of `cells` not yet known.
     fn fill_far(&mut self, cells: &[IVec3]) {
-        let mut missing: HashSet<u64, Fast> = HashSet::default();
-        let mut nodes: Vec<IVec3> = Vec::new();
-        for &cell in cells {
-            for node in stencil(cell) {
-                let key = pack(node);
-                if !self.far.contains_key(&key) && missing.insert(key) {
-                    nodes.push(node);
-                }
-            }
-        }
+        let nodes = self.far.missing(cells, -BELOW, STENCIL as i32 - 1 - BELOW);
         let step = self.step;
         let values: Vec<f64> = nodes
             .par_iter()
             .with_min_len(8)
             .map(|&n| self.far_sum(n.as_dvec3() * step))
             .collect();
-        for (node, value) in nodes.into_iter().zip(values) {
-            self.far.insert(pack(node), value);
-        }
+        self.far.set(&nodes, &values);
     }
 
     /// The stencil's far values and the near centres of `cell`.
     fn cell_data(&self, cell: IVec3) -> CellData {
-        let mut nodes = [[[0.0; STENCIL]; STENCIL]; STENCIL];
-        for (a, plane) in nodes.iter_mut().enumerate() {
-            for (b, row) in plane.iter_mut().enumerate() {
-                for (c, value) in row.iter_mut().enumerate() {
-                    let node = cell + IVec3::new(a as i32, b as i32, c as i32) - BELOW;
-                    *value = self.far.get(&pack(node)).copied().unwrap_or(0.0);
-                }
-            }
-        }
+        let nodes = self.far.stencil::<STENCIL>(cell, -BELOW);
         // Every centre within the radius of some point of the cell.
         let centre = (cell.as_dvec3() + 0.5) * self.step;
         let reach = self.kernel.radius() + 0.5 * 3f64.sqrt() * self.step;
@@ -299,12 +281,6 @@ impl<'a> SplitField<'a> {
         }
         (groups, strays)
     }
-}
-
-/// The `STENCIL^3` nodes around `cell`.
-fn stencil(cell: IVec3) -> impl Iterator<Item = IVec3> {
-    let n = STENCIL as i32;
-    (0..n * n * n).map(move |k| cell + IVec3::new(k / (n * n), (k / n) % n, k % n) - BELOW)
 }
 
 /// `1 / prod_(k != j) (n_j - n_k)` for the stencil's nodes `n_j = j - BELOW`

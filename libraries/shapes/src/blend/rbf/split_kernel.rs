@@ -85,11 +85,16 @@ impl SplitKernel {
     /// (each step an array map) so that it compiles to vector instructions.
     #[inline(always)]
     pub(crate) fn near_lanes(&self, s: [f64; 4]) -> ([f64; 4], [f64; 4]) {
-        let r: [f64; 4] = std::array::from_fn(|l| s[l].sqrt());
-        let smooth: [(f64, f64); 4] = std::array::from_fn(|l| self.smooth(s[l]));
-        let inside = |l: usize, v: f64| if s[l] < self.radius2 { v } else { 0.0 };
-        let value = std::array::from_fn(|l| inside(l, s[l] * r[l] - smooth[l].0));
-        let factor = std::array::from_fn(|l| inside(l, 3.0 * r[l] - smooth[l].1));
+        // Plain loops over the lanes: `array::from_fn` is not always inlined.
+        let mut value = [0.0; 4];
+        let mut factor = [0.0; 4];
+        for l in 0..4 {
+            let r = s[l].sqrt();
+            let (smooth, dsmooth) = self.smooth(s[l]);
+            let inside = s[l] < self.radius2;
+            value[l] = if inside { s[l] * r - smooth } else { 0.0 };
+            factor[l] = if inside { 3.0 * r - dsmooth } else { 0.0 };
+        }
         (value, factor)
     }
 }
