@@ -62,14 +62,15 @@ pub struct SplitField<'a> {
 /// The points of one batch that fall in one lattice cell.
 struct CellGroup {
     cell: IVec3,
-    /// Indices into the batch.
-    members: Vec<usize>,
+    /// Its points: a range of the batch's cell-sorted order.
+    members: std::ops::Range<usize>,
 }
 
 /// What one cell's points share: the far field at its stencil's nodes and the
 /// centres near enough to matter.
 struct CellData {
-    nodes: [[[f64; STENCIL]; STENCIL]; STENCIL],
+    /// Boxed: the cache's table then moves small entries when it grows.
+    nodes: Box<[[[f64; STENCIL]; STENCIL]; STENCIL]>,
     near: NearCentres,
     /// The last batch that used the cell.
     used: u64,
@@ -146,7 +147,7 @@ impl<'a> SplitField<'a> {
 
     /// The stencil's far values and the near centres of `cell`.
     fn cell_data(&self, cell: IVec3) -> CellData {
-        let nodes = self.far.stencil::<STENCIL>(cell, -BELOW);
+        let nodes = Box::new(self.far.stencil::<STENCIL>(cell, -BELOW));
         // Every centre within the radius of some point of the cell.
         let centre = (cell.as_dvec3() + 0.5) * self.step;
         let reach = self.kernel.radius() + 0.5 * 3f64.sqrt() * self.step;
@@ -228,14 +229,16 @@ impl<'a> SplitField<'a> {
     /// Every point of the batch, grouped by cell; points off the lattice (far
     /// away or not finite) are summed directly.
     fn batch<const GRADIENT: bool>(&mut self, points: &[DVec3]) -> Vec<(f64, DVec3)> {
-        let (groups, strays) = self.group(points);
+        let (groups, order, strays) = self.group(points);
         self.prepare(&groups);
         let this = &*self;
         let evaluated: Vec<(usize, (f64, DVec3))> = groups
             .par_iter()
             .flat_map_iter(|group| {
                 let data = this.cells.get(&pack(group.cell));
-                group.members.iter().map(move |&i| {
+                let order = &order;
+                group.members.clone().map(move |k| {
+                    let i = order[k];
                     let value = match data {
                         Some(data) => {
                             let q = this.rbf.local(points[i]);
@@ -258,28 +261,29 @@ impl<'a> SplitField<'a> {
         out
     }
 
-    /// The batch's points grouped by lattice cell, and the points off the lattice.
-    fn group(&self, points: &[DVec3]) -> (Vec<CellGroup>, Vec<usize>) {
-        let mut keyed: Vec<(u64, IVec3, usize)> = Vec::with_capacity(points.len());
+    /// The batch's points grouped by lattice cell (as ranges of the returned
+    /// order, which sorts the points by cell), and the points off the lattice.
+    fn group(&self, points: &[DVec3]) -> (Vec<CellGroup>, Vec<usize>, Vec<usize>) {
+        let mut keyed: Vec<(u64, usize)> = Vec::with_capacity(points.len());
         let mut strays = Vec::new();
         for (i, &p) in points.iter().enumerate() {
             match cell_of(self.rbf.local(p), self.step) {
-                Some(cell) => keyed.push((pack(cell), cell, i)),
+                Some(cell) => keyed.push((pack(cell), i)),
                 None => strays.push(i),
             }
         }
-        keyed.sort_unstable_by_key(|&(key, _, i)| (key, i));
+        keyed.sort_unstable();
         let mut groups: Vec<CellGroup> = Vec::new();
-        for (_, cell, i) in keyed {
+        for (k, &(key, i)) in keyed.iter().enumerate() {
             match groups.last_mut() {
-                Some(g) if g.cell == cell => g.members.push(i),
+                Some(g) if keyed[g.members.start].0 == key => g.members.end = k + 1,
                 _ => groups.push(CellGroup {
-                    cell,
-                    members: vec![i],
+                    cell: cell_of(self.rbf.local(points[i]), self.step).unwrap_or_default(),
+                    members: k..k + 1,
                 }),
             }
         }
-        (groups, strays)
+        (groups, keyed.into_iter().map(|(_, i)| i).collect(), strays)
     }
 }
 
