@@ -12,7 +12,6 @@
 
 use super::regions::{BlendRegions, ParentClass};
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// Which input a point of the blended model comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -106,14 +105,8 @@ pub fn merge(
             );
         }
     }
-    // The outline test is a polygon distance per point: in parallel.
-    let keep: Vec<bool> = transition
-        .par_iter()
-        .with_min_len(256)
-        .map(|&p| keep_transition(regions, p, s1_threshold))
-        .collect();
     for (i, &p) in transition.iter().enumerate() {
-        if keep[i] {
+        if keep_transition(regions, p, s1_threshold) {
             out.push(
                 p,
                 transition_normals.get(i).copied().unwrap_or(DVec3::ZERO),
