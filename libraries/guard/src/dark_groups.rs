@@ -1,67 +1,73 @@
-//! Dark cones (`guard::no_return`) gathered into groups of nearby
-//! directions, each under one bounding cone from the same apex, so that a
-//! sphere no nearer to a group's bounding cone than its bound so far skips
-//! every member at once. Built once per cloud, with its list of rays
-//! without a return.
+//! Dark cones (`guard::no_return`) gathered into a tree of nearby
+//! directions: the root holds every cone, each node is halved at the median
+//! of its axes until a leaf holds at most [`LEAF_SIZE`], and every node has a
+//! bounding cone from the same apex over all its members, so that a sphere no
+//! nearer to a node's bounding cone than its bound so far skips every member
+//! below it at once: a few tests where there were hundreds. Built once
+//! per cloud, with its list of rays without a return.
 //!
 //! Why the bounding cone holds its members: a direction within `alpha_k` of
-//! a member's axis `a_k` is within `angle(a, a_k) + alpha_k` of the group's
+//! a member's axis `a_k` is within `angle(a, a_k) + alpha_k` of the node's
 //! axis `a` (the triangle inequality for angles), so the cone of half angle
 //! `max_k (angle(a, a_k) + alpha_k)`, padded by [`ANGLE_PAD`], contains
 //! every member cone, and the distance to it is at most the distance to any
-//! of them. The cone formula loses at worst a few times `sqrt(eps)` of the
-//! distance to the apex to rounding (near a cone's axis), far less than the
-//! [`ROUNDING_REL`] allowance a group's distance is reduced by, so a skipped
+//! of them. Each node's cone is computed from its members themselves, never
+//! from its halves' cones, so a deep node is no looser for being deep. The
+//! cone formula loses at worst a few times `sqrt(eps)` of the distance to
+//! the apex to rounding (near a cone's axis), far less than the
+//! [`ROUNDING_REL`] allowance a node's distance is reduced by, so a skipped
 //! member could not have lowered the computed minimum.
 
 use glam::DVec3;
 
-/// Most members of a group: groups are halved until they hold no more.
-pub(crate) const GROUP_SIZE: usize = 16;
+/// Most members of a leaf: nodes are halved until they hold no more.
+pub(crate) const LEAF_SIZE: usize = 4;
 
-/// Padding of a group's half angle (rad) against the rounding of the angles.
+/// Padding of a node's half angle (rad) against the rounding of the angles.
 const ANGLE_PAD: f64 = 1e-6;
 
-/// A group's cone is used only below this half angle (rad): the distance
+/// A node's cone is used only below this half angle (rad): the distance
 /// formula needs less than a right angle.
-const MAX_GROUP_ANGLE: f64 = 1.5;
+const MAX_BOUND_ANGLE: f64 = 1.5;
 
-/// Rounding allowance of a group's distance, relative to the distance from
+/// Rounding allowance of a node's distance, relative to the distance from
 /// the apex (plus one unit).
 pub(crate) const ROUNDING_REL: f64 = 1e-6;
 
 /// A cone from the common apex: unit axis, sine and cosine of its half angle.
 pub(crate) type Cone = (DVec3, f64, f64);
 
-/// One group: its members' range in the grouped order, and its bounding
-/// cone unless the members spread too wide for one.
+/// One node of the tree: its members' range in the tree's order, its
+/// bounding cone unless the members spread too wide for one, and its two
+/// halves (indices in the tree) unless it is a leaf.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct ConeGroup {
+pub(crate) struct ConeNode {
     pub members: [usize; 2],
     pub bound: Option<Cone>,
+    pub halves: Option<[usize; 2]>,
 }
 
-/// The cones' indices in grouped order and the groups over that order.
-pub(crate) fn group_cones(cones: &[Cone]) -> (Vec<usize>, Vec<ConeGroup>) {
+/// The cones' indices in the tree's order and the tree over that order, its
+/// root first (one node, without members, when there are no cones).
+pub(crate) fn cone_tree(cones: &[Cone]) -> (Vec<usize>, Vec<ConeNode>) {
     let mut order: Vec<usize> = (0..cones.len()).collect();
-    let mut ranges = Vec::new();
-    halve(cones, &mut order, 0, &mut ranges);
-    let groups = ranges
-        .into_iter()
-        .map(|members| ConeGroup {
-            members,
-            bound: bounding_cone(cones, &order[members[0]..members[1]]),
-        })
-        .collect();
-    (order, groups)
+    let mut nodes = Vec::new();
+    build(cones, &mut order, 0, &mut nodes);
+    (order, nodes)
 }
 
-/// Splits `members` (starting at `start` in the order) at the median of
-/// the axes' coordinate that spreads most, until a part is small enough.
-fn halve(cones: &[Cone], members: &mut [usize], start: usize, ranges: &mut Vec<[usize; 2]>) {
-    if members.len() <= GROUP_SIZE {
-        ranges.push([start, start + members.len()]);
-        return;
+/// Adds the node of `members` (starting at `start` in the order) and, unless
+/// it is small enough to be a leaf, its halves split at the median of the
+/// axes' coordinate that spreads most; returns its index.
+fn build(cones: &[Cone], members: &mut [usize], start: usize, nodes: &mut Vec<ConeNode>) -> usize {
+    let at = nodes.len();
+    nodes.push(ConeNode {
+        members: [start, start + members.len()],
+        bound: bounding_cone(cones, members),
+        halves: None,
+    });
+    if members.len() <= LEAF_SIZE {
+        return at;
     }
     let spread = |k: usize| {
         let (lo, hi) = members
@@ -75,12 +81,14 @@ fn halve(cones: &[Cone], members: &mut [usize], start: usize, ranges: &mut Vec<[
     members.sort_unstable_by(|&a, &b| cones[a].0[widest].total_cmp(&cones[b].0[widest]));
     let half = members.len() / 2;
     let (left, right) = members.split_at_mut(half);
-    halve(cones, left, start, ranges);
-    halve(cones, right, start + half, ranges);
+    let left = build(cones, left, start, nodes);
+    let right = build(cones, right, start + half, nodes);
+    nodes[at].halves = Some([left, right]);
+    at
 }
 
 /// The cone around the members' mean axis that holds them all, or `None`
-/// when it would reach [`MAX_GROUP_ANGLE`] (or the axes cancel out).
+/// when it would reach [`MAX_BOUND_ANGLE`] (or the axes cancel out).
 fn bounding_cone(cones: &[Cone], members: &[usize]) -> Option<Cone> {
     let axis = members
         .iter()
@@ -95,7 +103,7 @@ fn bounding_cone(cones: &[Cone], members: &[usize]) -> Option<Cone> {
         })
         .fold(0.0f64, f64::max)
         + ANGLE_PAD;
-    (half_angle < MAX_GROUP_ANGLE).then(|| {
+    (half_angle < MAX_BOUND_ANGLE).then(|| {
         let (sin, cos) = half_angle.sin_cos();
         (axis, sin, cos)
     })
@@ -124,10 +132,11 @@ mod tests {
     use crate::field_of_view::tests::random_unit;
     use rand::{Rng, SeedableRng};
 
-    /// Every member cone lies in its group's bounding cone: directions on a
-    /// member's rim are inside the group's (with its padding to spare).
+    /// Every member cone lies in its node's bounding cone: directions on a
+    /// member's rim are inside the node's (with its padding to spare); the
+    /// leaves hold every cone once, and a node's halves split its members.
     #[test]
-    fn groups_hold_their_members() {
+    fn nodes_hold_their_members() {
         let mut rng = rand_pcg::Pcg64::seed_from_u64(9);
         for _ in 0..40 {
             let centre = random_unit(&mut rng);
@@ -140,16 +149,24 @@ mod tests {
                     (axis, sin, cos)
                 })
                 .collect();
-            let (order, groups) = group_cones(&cones);
+            let (order, nodes) = cone_tree(&cones);
             let mut seen: Vec<usize> = order.clone();
             seen.sort();
             assert_eq!(seen, (0..n).collect::<Vec<_>>());
-            for group in &groups {
-                assert!(group.members[1] - group.members[0] <= GROUP_SIZE);
-                let Some((axis, sin, cos)) = group.bound else {
+            assert_eq!(nodes[0].members, [0, n]);
+            for node in &nodes {
+                match node.halves {
+                    None => assert!(node.members[1] - node.members[0] <= LEAF_SIZE),
+                    Some([a, b]) => {
+                        assert_eq!(nodes[a].members[0], node.members[0]);
+                        assert_eq!(nodes[a].members[1], nodes[b].members[0]);
+                        assert_eq!(nodes[b].members[1], node.members[1]);
+                    }
+                }
+                let Some((axis, sin, cos)) = node.bound else {
                     continue;
                 };
-                for &k in &order[group.members[0]..group.members[1]] {
+                for &k in &order[node.members[0]..node.members[1]] {
                     let (a, s, c) = cones[k];
                     let rim = a * c + a.any_orthonormal_vector() * s;
                     assert!(rim.dot(axis) >= cos * rim.length() - 1e-12, "{rim} {axis}");

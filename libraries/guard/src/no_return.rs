@@ -19,7 +19,7 @@
 //! search brackets its minimum, and the bracket's half width bounds the
 //! error from below.
 
-use super::dark_groups::{cone_distance, group_cones, Cone, ConeGroup, ROUNDING_REL};
+use super::dark_groups::{cone_distance, cone_tree, Cone, ConeNode, ROUNDING_REL};
 use super::shape::Shape;
 use glam::DVec3;
 use shroud_msg::NoReturn;
@@ -35,10 +35,10 @@ pub(crate) struct DarkCones {
     apex: DVec3,
     /// Axis (renormalised: the wire allows 1e-6 off unit), `sin`, `cos`.
     cones: Vec<Cone>,
-    /// The cones' indices gathered by direction, and the groups over them
+    /// The cones' indices gathered by direction, and the tree over them
     /// (`guard::dark_groups`), for spheres.
     order: Vec<usize>,
-    groups: Vec<ConeGroup>,
+    tree: Vec<ConeNode>,
 }
 
 impl DarkCones {
@@ -51,12 +51,12 @@ impl DarkCones {
                 (DVec3::from_array(c.axis).normalize(), sin, cos)
             })
             .collect();
-        let (order, groups) = group_cones(&cones);
+        let (order, tree) = cone_tree(&cones);
         Self {
             apex: DVec3::from_array(no_return.apex),
             cones,
             order,
-            groups,
+            tree,
         }
     }
 
@@ -135,25 +135,54 @@ impl DarkCones {
         best.clamp(0.0, cap)
     }
 
-    /// [`Self::each_cone_clearance`] of a sphere, bit for bit, by groups:
-    /// a group whose bounding cone is no nearer than the bound so far is
-    /// skipped (`guard::dark_groups`). A sphere's answer is the smallest of
-    /// its cones' distances, in any order.
+    /// [`Self::each_cone_clearance`] of a sphere, bit for bit, down the
+    /// tree: a node whose bounding cone is no nearer than the bound so far
+    /// is skipped with everything below it (`guard::dark_groups`), and of
+    /// two halves the nearer is searched first, so that the bound drops
+    /// early. A sphere's answer is the smallest of its cones' distances, in
+    /// any order.
     fn sphere_clearance(&self, centre: DVec3, radius: f64, cap: f64) -> f64 {
         let rounding = ROUNDING_REL * (1.0 + (centre - self.apex).length());
+        // How near a node's members may be, at best: its bounding cone's
+        // distance less the allowances (-inf without a bounding cone).
+        let near = |node: &ConeNode| {
+            node.bound.map_or(f64::NEG_INFINITY, |bound| {
+                cone_distance(self.apex, bound, centre) - rounding - radius
+            })
+        };
         let mut best = cap;
-        for group in &self.groups {
-            if let Some(bound) = group.bound {
-                if cone_distance(self.apex, bound, centre) - rounding - radius >= best {
-                    continue;
-                }
+        // Nodes still to search, with how near their members may be: a
+        // halving tree is at most 64 deep, and the stack holds at most one
+        // node more than its depth.
+        let mut stack = [(0usize, 0.0f64); 66];
+        stack[0] = (0, near(&self.tree[0]));
+        let mut waiting = 1;
+        while waiting > 0 {
+            waiting -= 1;
+            let (index, nearest) = stack[waiting];
+            if nearest >= best {
+                continue;
             }
-            for &k in &self.order[group.members[0]..group.members[1]] {
-                best = best.min(self.distance(k, centre) - radius);
-                if best <= 0.0 {
-                    return 0.0;
+            let node = &self.tree[index];
+            let Some([a, b]) = node.halves else {
+                for &k in &self.order[node.members[0]..node.members[1]] {
+                    best = best.min(self.distance(k, centre) - radius);
+                    if best <= 0.0 {
+                        return 0.0;
+                    }
                 }
-            }
+                continue;
+            };
+            let (na, nb) = (near(&self.tree[a]), near(&self.tree[b]));
+            // The nearer half on top, searched next.
+            let (first, second) = if nb < na {
+                ((b, nb), (a, na))
+            } else {
+                ((a, na), (b, nb))
+            };
+            stack[waiting] = second;
+            stack[waiting + 1] = first;
+            waiting += 2;
         }
         best.clamp(0.0, cap)
     }
@@ -203,11 +232,11 @@ mod tests {
     proptest! {
         #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
 
-        /// A sphere's bound by groups is, bit for bit, the bound over every
-        /// cone in turn: never larger (that would be optimistic), never
+        /// A sphere's bound down the tree is, bit for bit, the bound over
+        /// every cone in turn: never larger (that would be optimistic), never
         /// smaller.
         #[test]
-        fn spheres_by_groups_are_bounded_as_by_every_cone(seed in any::<u64>(), cap in 0.01..3.0f64) {
+        fn spheres_down_the_tree_are_bounded_as_by_every_cone(seed in any::<u64>(), cap in 0.01..3.0f64) {
             let mut rng = Pcg64::seed_from_u64(seed);
             let no_return = random_cones(&mut rng);
             let cones = DarkCones::new(&no_return);
@@ -219,9 +248,9 @@ mod tests {
                     + (axis * rng.random_range(0.0..3.0) + unit(&mut rng) * rng.random_range(0.0..1.0));
                 let radius = rng.random_range(0.001..0.3);
                 let sphere = Shape::Sphere(Sphere { centre, radius });
-                let grouped = cones.clearance(&sphere, cap);
+                let by_tree = cones.clearance(&sphere, cap);
                 let every = cones.each_cone_clearance((centre, centre), radius, cap);
-                prop_assert!(grouped == every, "{centre} r {radius}: {grouped} vs {every}");
+                prop_assert!(by_tree == every, "{centre} r {radius}: {by_tree} vs {every}");
             }
         }
     }
