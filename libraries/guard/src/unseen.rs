@@ -158,8 +158,20 @@ fn outward((first, last): (usize, usize), start: usize) -> impl Iterator<Item = 
 
 /// Whether `p` lies in the closed triangle `t`.
 fn in_triangle(p: P2, t: [P2; 3]) -> bool {
+    inside_by_sides(sides(p, t))
+}
+
+/// The cross products of the edges `t0 t1`, `t1 t2`, `t2 t0` with `p`'s
+/// offset from each edge's start.
+#[inline]
+fn sides(p: P2, t: [P2; 3]) -> [f64; 3] {
     let side = |a: P2, b: P2| (b - a).perp_dot(p - a);
-    let s = [side(t[0], t[1]), side(t[1], t[2]), side(t[2], t[0])];
+    [side(t[0], t[1]), side(t[1], t[2]), side(t[2], t[0])]
+}
+
+/// [`in_triangle`] from the [`sides`].
+#[inline]
+fn inside_by_sides(s: [f64; 3]) -> bool {
     (s[0] >= 0.0 && s[1] >= 0.0 && s[2] >= 0.0) || (s[0] <= 0.0 && s[1] <= 0.0 && s[2] <= 0.0)
 }
 
@@ -203,15 +215,25 @@ fn distance_to_triangle(a: P2, b: P2, t: [P2; 3]) -> f64 {
 }
 
 /// [`segment_triangle_distance`] of the segment `p`-`p`, bit for bit, with
-/// the work for the second end left out: a point meets an edge when it is
-/// on its line (the cross products vanish) within its extent, and a corner's
-/// distance to the point is the distance of the degenerate segment.
+/// the work for the second end left out and the cross products computed
+/// once: a point meets an edge when it is on its line (the cross products
+/// vanish) within its extent, and a corner's distance to the point is the
+/// distance of the degenerate segment.
 fn point_triangle_distance(p: P2, t: [P2; 3]) -> f64 {
-    if in_triangle(p, t) {
+    let side = sides(p, t);
+    if inside_by_sides(side) {
         return 0.0;
     }
     let edges = [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])];
-    if edges.iter().any(|&(c, d)| segments_meet(p, p, c, d)) {
+    // `segments_meet(p, p, c, d)` with the cross products of the inside
+    // test: of the degenerate segment's, two are products with a zero
+    // vector (their product is a zero, always `<= 0`), and the other two
+    // are both the side of edge `c`-`d`; its extents' overlap is `p`'s.
+    let on_edge = |(&(c, d), s): (&(P2, P2), f64)| {
+        let within = |i: usize| p[i] <= c[i].max(d[i]) && c[i].min(d[i]) <= p[i];
+        s * s <= 0.0 && within(0) && within(1)
+    };
+    if edges.iter().zip(side).any(on_edge) {
         return 0.0;
     }
     // Squared, with one square root at the end: the rounded square root is
