@@ -333,7 +333,8 @@ impl<'a, P: Probe> Refinement<'a, P> {
     /// The split is made once and kept in `kept` when given (near the top
     /// of a cell's tree: it depends on the surrogate alone).
     fn descend(&mut self, node: &Node, level: u32, kept: Option<Kept>) {
-        let mut fresh = Split::default();
+        // Made only when not kept: a split is large, and so is dropping it.
+        let fresh: Split;
         let split: &Split = match kept.and_then(|at| self.kept(at)) {
             Some(lock) => lock.get_or_init(|| {
                 let mut split = Box::default();
@@ -341,7 +342,9 @@ impl<'a, P: Probe> Refinement<'a, P> {
                 split
             }),
             None => {
-                self.split(node, level, &mut fresh, true);
+                let mut made = Split::default();
+                self.split(node, level, &mut made, true);
+                fresh = made;
                 &fresh
             }
         };
