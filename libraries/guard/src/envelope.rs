@@ -146,6 +146,12 @@ pub struct Envelope {
     slack_pad: [f64; 2],
     /// `1 / u_step`, `1 / v_step`.
     inv_step: [f64; 2],
+    /// Per axis: the cell count as a float, and how far boxes reach past
+    /// their cells (`span` asks for both on every row it looks at).
+    cells_f: [f64; 2],
+    span_pad: [f64; 2],
+    /// [`Self::uv_extent`], computed once.
+    extent: ([f64; 2], [f64; 2]),
     /// How far the frame is from orthonormal (distances in frame coordinates
     /// are world distances up to a factor `1 +- 3 frame_error`).
     frame_error: f64,
@@ -229,6 +235,9 @@ impl Envelope {
             slack_pad,
             frame_error,
             inv_step: [1.0 / domain.u_step, 1.0 / domain.v_step],
+            cells_f: [cells_s as f64, cells_t as f64],
+            span_pad: slack_pad.map(|slack| 2.0 * margin + 2.0 * slack),
+            extent: ([domain.u_min, u_max], [domain.v_min, v_max]),
             kept_cells: 0,
             field_of_view: None,
             view_region: None,
@@ -301,11 +310,7 @@ impl Envelope {
 
     /// The domain as a frame rectangle `([u_min, u_max], [v_min, v_max])`.
     pub fn uv_extent(&self) -> ([f64; 2], [f64; 2]) {
-        let d = &self.domain;
-        (
-            [d.u_min, d.u_min + self.cells_s as f64 * d.u_step],
-            [d.v_min, d.v_min + self.cells_t as f64 * d.v_step],
-        )
+        self.extent
     }
 
     /// Absolute margin subtracted from every distance of this surrogate.
@@ -501,12 +506,12 @@ impl Envelope {
         };
         let inv = self.inv_step[axis];
         // Boxes reach past their cells by the margin and the slack padding.
-        let pad = 2.0 * self.margin + 2.0 * self.slack_pad[axis];
+        let pad = self.span_pad[axis];
         let (a, b) = (
             (lo - pad - origin) * inv - FUDGE,
             (hi + pad - origin) * inv + FUDGE,
         );
-        if !(b >= 0.0 && a <= n as f64) {
+        if !(b >= 0.0 && a <= self.cells_f[axis]) {
             return None;
         }
         Some((cell_index(a, n), cell_index(b, n)))
@@ -515,11 +520,18 @@ impl Envelope {
 
 /// `floor(x)` clamped into `0..cells` (`cells >= 1`), NaN to 0, as an
 /// index: the saturating cast truncates towards zero, which is the floor
-/// from 0 up, and takes what is below 0, and NaN, to 0; a call of `floor`
-/// the baseline x86-64 has no instruction for.
+/// from 0 up, instead of a call of `floor` the baseline x86-64 has no
+/// instruction for.
 #[inline]
 fn cell_index(x: f64, cells: usize) -> usize {
-    (x as usize).min(cells - 1)
+    // Below 1 (NaN too) the index is 0; from 1 up, truncation is the floor,
+    // and a cast to `i64` is one instruction there where a cast to `usize`
+    // is a sequence (it saturates at `i64::MAX`, far above any cell count).
+    if x >= 1.0 {
+        (x as i64 as usize).min(cells - 1)
+    } else {
+        0
+    }
 }
 
 /// Smallest and largest control point of a net.
