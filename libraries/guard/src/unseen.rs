@@ -20,6 +20,7 @@
 //! say, so the largest bound over the views is a lower bound too.
 
 use super::config::GuardConfig;
+use super::envelope::index_f64;
 use super::field_of_view::clearance_outside;
 use super::shape::Shape;
 use super::trimmed::{rect_gap, P2};
@@ -82,7 +83,7 @@ impl Envelope {
         // How far the core's extent along one axis lies from a cell's
         // interval.
         let gap = |x: [f64; 2], start: f64, step: f64, k: usize| {
-            let (c0, c1) = (start + k as f64 * step, start + (k + 1) as f64 * step);
+            let (c0, c1) = (start + index_f64(k) * step, start + index_f64(k + 1) * step);
             (c0 - x[1]).max(x[0] - c1).max(0.0)
         };
         let mut best = bound;
