@@ -152,7 +152,9 @@ impl Envelope {
         let mut touching: Option<bool> = None;
         let refine = config.refine_depth > 0;
         let (boxes, row_boxes) = (self.boxes(), self.row_boxes());
-        for g in g0..=g1 {
+        // Half-open ranges (the indices are cells, far below `usize::MAX`):
+        // an inclusive range's loop checks more on every step.
+        for g in g0..g1 + 1 {
             // Cells nearer than `best` lie within `limit` of the core.
             let limit = best + offset;
             let row = &row_boxes[g];
@@ -166,7 +168,7 @@ impl Envelope {
             let Some((a, b)) = self.span(0, u[0] - du, u[1] + du) else {
                 continue;
             };
-            for h in a..=b {
+            for h in a..b + 1 {
                 let index = g * cells_s + h;
                 let cell = &boxes[index];
                 if cell.is_empty() {

@@ -146,8 +146,9 @@ impl Trimmed {
     /// `h[0]..=h[1]` x `g[0]..=g[1]` (and within rounding of them) to a
     /// trimmed triangle.
     pub(crate) fn lower_bound(&self, h: [usize; 2], g: [usize; 2]) -> f64 {
-        let nearest = (g[0]..=g[1])
-            .flat_map(|g| &self.gaps[g * self.cells_s + h[0]..=g * self.cells_s + h[1]])
+        // Half-open ranges: an inclusive one checks more on every step.
+        let nearest = (g[0]..g[1] + 1)
+            .flat_map(|g| &self.gaps[g * self.cells_s + h[0]..g * self.cells_s + h[1] + 1])
             .fold(f64::INFINITY, |m, &x| m.min(x));
         nearest - self.rounding
     }

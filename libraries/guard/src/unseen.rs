@@ -147,13 +147,26 @@ impl Envelope {
 }
 
 /// The indices `first..=last`, from `start` (clamped into them) outwards,
-/// alternating sides.
+/// alternating sides (`start`, one below, one above, two below, ...), one
+/// side alone once the other is used up.
 fn outward((first, last): (usize, usize), start: usize) -> impl Iterator<Item = usize> {
     let start = start.clamp(first, last);
-    (0..=last - first).flat_map(move |step| {
-        let up = Some(start + step).filter(|&i| i <= last);
-        let down = start.checked_sub(step + 1).filter(|&i| i >= first);
-        up.into_iter().chain(down)
+    // The next index above (from `start` itself), the last one below.
+    let (mut above, mut below) = (start, start);
+    let mut up_next = true;
+    std::iter::from_fn(move || {
+        let (up, down) = (above <= last, below > first);
+        if up && (up_next || !down) {
+            up_next = false;
+            above += 1;
+            Some(above - 1)
+        } else if down {
+            up_next = true;
+            below -= 1;
+            Some(below)
+        } else {
+            None
+        }
     })
 }
 
