@@ -12,9 +12,13 @@
 //! case of `guard::no_return`'s search). Each decision is measured in two
 //! poses: over the larger sphere (a contact) and near but clear (the first
 //! pose on the way from `FAR` to `OVER` whose clearance is under 0.25 m but
-//! not a stop).
+//! not a stop). In the pose over the larger sphere, the first decision
+//! after new clouds is measured too (`decide_first_after_new_cloud_*`): a
+//! guard whose envelopes have kept no refinement splits yet, cloned afresh
+//! for every decision outside the timing, as a fit node's new cloud every
+//! frame leaves it.
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use shroud_guard::{
     check_arm, ArmFile, CollisionGuard, Envelope, GuardPolicy, SurrogateInput, UnobservedPolicy,
 };
@@ -148,6 +152,8 @@ fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
                 }
                 guard.accept(view, input, 0, 0).expect("fresh");
             }
+            // Before any decision: no refinement split is kept yet.
+            let fresh = guard.clone();
             let decision = guard.decide(&pose.shapes, 0).expect("valid pose");
             eprintln!(
                 "{count} view(s), {label}{suffix}: {:?}, min clearance {:.4}",
@@ -158,6 +164,16 @@ fn views(c: &mut Criterion, points: &[[f32; 3]], file: &ArmFile) {
             group.bench_function(name, |b| {
                 b.iter(|| guard.decide(black_box(&pose.shapes), 0))
             });
+            if suffix.is_empty() {
+                let name = format!("decide_first_after_new_cloud_{count}_views_{label}");
+                group.bench_function(name, |b| {
+                    b.iter_batched_ref(
+                        || fresh.clone(),
+                        |guard| guard.decide(black_box(&pose.shapes), 0),
+                        BatchSize::SmallInput,
+                    )
+                });
+            }
         }
     }
     group.finish();
