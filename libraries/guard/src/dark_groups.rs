@@ -21,7 +21,7 @@
 use glam::DVec3;
 
 /// Most members of a leaf: nodes are halved until they hold no more.
-pub(crate) const LEAF_SIZE: usize = 4;
+pub(crate) const LEAF_SIZE: usize = 8;
 
 /// Padding of a node's half angle (rad) against the rounding of the angles.
 const ANGLE_PAD: f64 = 1e-6;
@@ -54,6 +54,19 @@ pub(crate) fn cone_tree(cones: &[Cone]) -> (Vec<usize>, Vec<ConeNode>) {
     let mut nodes = Vec::new();
     build(cones, &mut order, 0, &mut nodes);
     (order, nodes)
+}
+
+/// How many nodes the longest way from the root to a leaf passes.
+pub(crate) fn tree_depth(nodes: &[ConeNode]) -> usize {
+    let mut depth = vec![0; nodes.len()];
+    // Halves come after their node.
+    for (index, node) in nodes.iter().enumerate() {
+        depth[index] = depth[index].max(1);
+        for half in node.halves.into_iter().flatten() {
+            depth[half] = depth[index] + 1;
+        }
+    }
+    depth.into_iter().max().unwrap_or(0)
 }
 
 /// Adds the node of `members` (starting at `start` in the order) and, unless
@@ -113,17 +126,35 @@ fn bounding_cone(cones: &[Cone], members: &[usize]) -> Option<Cone> {
 /// below a right angle): 0 inside, the distance to the apex behind it, to
 /// the lateral surface between.
 #[inline]
-pub(crate) fn cone_distance(apex: DVec3, (axis, sin, cos): Cone, p: DVec3) -> f64 {
+pub(crate) fn cone_distance(apex: DVec3, cone: Cone, p: DVec3) -> f64 {
     let d = p - apex;
+    cone_distance_at(d, d.length_squared(), cone)
+}
+
+/// [`cone_distance`] of the point `d` away from the apex, given `d2`, its
+/// squared length (`d.length()` is its root): a search of many cones from
+/// one point computes both once. The same operations, so the same bits.
+#[inline]
+pub(crate) fn cone_distance_at(d: DVec3, d2: f64, cone: Cone) -> f64 {
+    cone_distance_and_side(d, d2, cone).0
+}
+
+/// [`cone_distance_at`], and how far the point lies off the cone's lateral
+/// surface (negative inside, the deeper the lower): a search orders by it
+/// where the distances are all 0.
+#[inline]
+pub(crate) fn cone_distance_and_side(d: DVec3, d2: f64, (axis, sin, cos): Cone) -> (f64, f64) {
     let along = d.dot(axis);
-    let across = (d.length_squared() - along * along).max(0.0).sqrt();
-    if across * cos <= along * sin {
+    let across = (d2 - along * along).max(0.0).sqrt();
+    let side = across * cos - along * sin;
+    let distance = if across * cos <= along * sin {
         0.0
     } else if along * cos + across * sin <= 0.0 {
-        d.length()
+        d2.sqrt()
     } else {
-        across * cos - along * sin
-    }
+        side
+    };
+    (distance, side)
 }
 
 #[cfg(test)]
@@ -154,6 +185,9 @@ mod tests {
             seen.sort();
             assert_eq!(seen, (0..n).collect::<Vec<_>>());
             assert_eq!(nodes[0].members, [0, n]);
+            // Halved at every level down to leaves of at most LEAF_SIZE.
+            let most = 1 + (n as f64 / LEAF_SIZE as f64).log2().ceil().max(0.0) as usize;
+            assert!((1..=most).contains(&tree_depth(&nodes)), "{n}");
             for node in &nodes {
                 match node.halves {
                     None => assert!(node.members[1] - node.members[0] <= LEAF_SIZE),

@@ -19,10 +19,18 @@
 //! search brackets its minimum, and the bracket's half width bounds the
 //! error from below.
 
-use super::dark_groups::{cone_distance, cone_tree, Cone, ConeNode, ROUNDING_REL};
+use super::dark_groups::{
+    cone_distance, cone_distance_and_side, cone_distance_at, cone_tree, tree_depth, Cone, ConeNode,
+    ROUNDING_REL,
+};
 use super::shape::Shape;
 use glam::DVec3;
 use shroud_msg::NoReturn;
+
+/// Nodes a sphere's search of the tree holds at once: one more than the
+/// tree's depth at most (a deeper tree, of millions of cones, is searched
+/// cone by cone instead).
+const STACK: usize = 24;
 
 /// Golden-section steps on a capsule's segment: the bracket shrinks to
 /// 0.618^40 (about 4e-9) of the segment.
@@ -35,10 +43,11 @@ pub(crate) struct DarkCones {
     apex: DVec3,
     /// Axis (renormalised: the wire allows 1e-6 off unit), `sin`, `cos`.
     cones: Vec<Cone>,
-    /// The cones' indices gathered by direction, and the tree over them
-    /// (`guard::dark_groups`), for spheres.
-    order: Vec<usize>,
+    /// The cones gathered by direction (in the tree's order), the tree
+    /// over them (`guard::dark_groups`) and its depth, for spheres.
+    sorted: Vec<Cone>,
     tree: Vec<ConeNode>,
+    depth: usize,
 }
 
 impl DarkCones {
@@ -54,8 +63,9 @@ impl DarkCones {
         let (order, tree) = cone_tree(&cones);
         Self {
             apex: DVec3::from_array(no_return.apex),
+            sorted: order.iter().map(|&k| cones[k]).collect(),
+            depth: tree_depth(&tree),
             cones,
-            order,
             tree,
         }
     }
@@ -138,24 +148,31 @@ impl DarkCones {
     /// [`Self::each_cone_clearance`] of a sphere, bit for bit, down the
     /// tree: a node whose bounding cone is no nearer than the bound so far
     /// is skipped with everything below it (`guard::dark_groups`), and of
-    /// two halves the nearer is searched first, so that the bound drops
-    /// early. A sphere's answer is the smallest of its cones' distances, in
+    /// two halves the one the centre is deeper in (or nearer to) is searched
+    /// first, so that the bound drops early. A sphere's answer is the smallest of its cones' distances, in
     /// any order.
     fn sphere_clearance(&self, centre: DVec3, radius: f64, cap: f64) -> f64 {
+        if self.depth >= STACK {
+            return self.each_cone_clearance((centre, centre), radius, cap);
+        }
+        // The centre from the apex, and its squared length, for every cone.
+        let d = centre - self.apex;
+        let d2 = d.length_squared();
         let rounding = ROUNDING_REL * (1.0 + (centre - self.apex).length());
         // How near a node's members may be, at best: its bounding cone's
-        // distance less the allowances (-inf without a bounding cone).
+        // distance less the allowances (-inf without a bounding cone); and
+        // how far off its lateral surface the centre is, to order by.
         let near = |node: &ConeNode| {
-            node.bound.map_or(f64::NEG_INFINITY, |bound| {
-                cone_distance(self.apex, bound, centre) - rounding - radius
-            })
+            node.bound
+                .map_or((f64::NEG_INFINITY, f64::NEG_INFINITY), |bound| {
+                    let (distance, side) = cone_distance_and_side(d, d2, bound);
+                    (distance - rounding - radius, side)
+                })
         };
         let mut best = cap;
-        // Nodes still to search, with how near their members may be: a
-        // halving tree is at most 64 deep, and the stack holds at most one
-        // node more than its depth.
-        let mut stack = [(0usize, 0.0f64); 66];
-        stack[0] = (0, near(&self.tree[0]));
+        // Nodes still to search, with how near their members may be.
+        let mut stack = [(0usize, 0.0f64); STACK];
+        stack[0] = (0, near(&self.tree[0]).0);
         let mut waiting = 1;
         while waiting > 0 {
             waiting -= 1;
@@ -165,17 +182,18 @@ impl DarkCones {
             }
             let node = &self.tree[index];
             let Some([a, b]) = node.halves else {
-                for &k in &self.order[node.members[0]..node.members[1]] {
-                    best = best.min(self.distance(k, centre) - radius);
+                for &cone in &self.sorted[node.members[0]..node.members[1]] {
+                    best = best.min(cone_distance_at(d, d2, cone) - radius);
                     if best <= 0.0 {
                         return 0.0;
                     }
                 }
                 continue;
             };
-            let (na, nb) = (near(&self.tree[a]), near(&self.tree[b]));
-            // The nearer half on top, searched next.
-            let (first, second) = if nb < na {
+            let ((na, sa), (nb, sb)) = (near(&self.tree[a]), near(&self.tree[b]));
+            // The half the centre is deeper in (or nearer to) on top,
+            // searched next: the bound drops fastest there.
+            let (first, second) = if sb < sa {
                 ((b, nb), (a, na))
             } else {
                 ((a, na), (b, nb))
@@ -251,6 +269,32 @@ mod tests {
                 let by_tree = cones.clearance(&sphere, cap);
                 let every = cones.each_cone_clearance((centre, centre), radius, cap);
                 prop_assert!(by_tree == every, "{centre} r {radius}: {by_tree} vs {every}");
+            }
+        }
+    }
+
+    /// A tree too deep for the search's stack is searched cone by cone,
+    /// with the same answers.
+    #[test]
+    fn a_tree_too_deep_is_searched_cone_by_cone() {
+        let mut rng = Pcg64::seed_from_u64(17);
+        for _ in 0..20 {
+            let no_return = random_cones(&mut rng);
+            let cones = DarkCones::new(&no_return);
+            assert!(cones.depth < STACK);
+            let deep = DarkCones {
+                depth: STACK,
+                ..cones.clone()
+            };
+            let apex = DVec3::from_array(no_return.apex);
+            for _ in 0..50 {
+                let centre = apex + unit(&mut rng) * rng.random_range(0.0..3.0);
+                let radius = rng.random_range(0.001..0.3);
+                let sphere = Shape::Sphere(Sphere { centre, radius });
+                assert_eq!(
+                    cones.clearance(&sphere, 1.0).to_bits(),
+                    deep.clearance(&sphere, 1.0).to_bits()
+                );
             }
         }
     }
