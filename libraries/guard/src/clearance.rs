@@ -168,9 +168,8 @@ impl Envelope {
             let Some((a, b)) = self.span(0, u[0] - du, u[1] + du) else {
                 continue;
             };
-            for h in a..b + 1 {
-                let index = g * cells_s + h;
-                let cell = &boxes[index];
+            let first = g * cells_s + a;
+            for (index, cell) in (first..).zip(&boxes[first..first + (b - a) + 1]) {
                 if cell.is_empty() {
                     continue;
                 }
