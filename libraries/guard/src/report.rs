@@ -126,6 +126,14 @@ pub(crate) fn check_shapes_counting(
     unseen_counts: bool,
 ) -> Result<GuardReport, GuardError> {
     config.validate()?;
+    validate_shapes(shapes, link_count)?;
+    let results = shape_clearances(envelope, shapes, config, unseen_counts);
+    Ok(summarise(results, link_count, config))
+}
+
+/// Refuses a shape carried by no link of `0..link_count`, or not valid
+/// (the first such, in order).
+pub(crate) fn validate_shapes(shapes: &[WorldShape], link_count: usize) -> Result<(), GuardError> {
     for (index, s) in shapes.iter().enumerate() {
         if s.link >= link_count {
             return Err(GuardError::ShapeLink {
@@ -141,7 +149,18 @@ pub(crate) fn check_shapes_counting(
             });
         }
     }
-    let results = shapes
+    Ok(())
+}
+
+/// The per-shape results of [`check_shapes_counting`], for shapes and a
+/// config already validated.
+pub(crate) fn shape_clearances(
+    envelope: &Envelope,
+    shapes: &[WorldShape],
+    config: &GuardConfig,
+    unseen_counts: bool,
+) -> Vec<ShapeClearance> {
+    shapes
         .iter()
         .map(|s| {
             let unseen = envelope.unseen_clearance(&s.shape, config);
@@ -155,8 +174,7 @@ pub(crate) fn check_shapes_counting(
             };
             ShapeClearance::of_view(s.link, occupied, unseen)
         })
-        .collect();
-    Ok(summarise(results, link_count, config))
+        .collect()
 }
 
 /// How far past a view's unseen bound its occupied bound is still searched

@@ -15,10 +15,10 @@ use super::policy::UnobservedPolicy;
 use crate::report::summarise;
 use crate::{GuardConfig, GuardReport, ShapeClearance};
 
-/// One fresh view's report and how far obstacles may have moved since its
-/// cloud was taken (and until the verdict expires).
+/// One fresh view's results per shape and how far obstacles may have moved
+/// since its cloud was taken (and until the verdict expires).
 pub(super) struct ViewReport {
-    pub report: GuardReport,
+    pub shapes: Vec<ShapeClearance>,
     pub allowance: f64,
 }
 
@@ -30,12 +30,12 @@ pub(super) fn combine(
     config: &GuardConfig,
     policy: UnobservedPolicy,
 ) -> GuardReport {
-    let shapes = views.first().map_or(0, |v| v.report.shapes.len());
+    let shapes = views.first().map_or(0, |v| v.shapes.len());
     let combined = (0..shapes)
         .map(|i| {
             let per_view = views
                 .iter()
-                .map(|v| view_bound(&v.report.shapes[i], v.allowance, policy));
+                .map(|v| view_bound(&v.shapes[i], v.allowance, policy));
             per_view.reduce(best_of).expect("at least one view")
         })
         .collect();

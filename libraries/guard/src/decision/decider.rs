@@ -4,7 +4,7 @@ use super::combine::{combine, ViewReport};
 use super::policy::{GuardPolicy, UnobservedPolicy};
 use super::speed_control::SpeedControl;
 use super::view::{check_skew, HeldSurrogate, SurrogateInput, SurrogateRejected};
-use crate::report::check_shapes_counting;
+use crate::report::{shape_clearances, validate_shapes};
 use crate::{GuardConfig, GuardError, GuardReport, SpeedScale, WorldShape};
 use shroud_msg::{counted_transit, CollisionMessage, GuardVerdict, LinkClearance};
 
@@ -191,7 +191,7 @@ impl CollisionGuard {
             return Ok(self.stale(newest, now_ns));
         }
         let mut reports = Vec::with_capacity(fresh.len());
-        for h in &fresh {
+        for (i, h) in fresh.iter().enumerate() {
             // A view whose cloud may be misplaced looks that much further
             // (at most twice as far), so that subtracting the error from a
             // capped clearance does not stop the arm in empty space.
@@ -200,12 +200,17 @@ impl CollisionGuard {
                     + h.input.position_error.min(self.config.max_report),
                 ..self.config
             };
+            config.validate()?;
+            if i == 0 {
+                // The same shapes for every view: checked once, where the
+                // first view's check would refuse them.
+                validate_shapes(shapes, self.links.len())?;
+            }
             let unseen_counts = self.policy.unobserved == UnobservedPolicy::Stop;
-            let links = self.links.len();
             let envelope = &h.input.envelope;
-            let report = check_shapes_counting(envelope, shapes, links, &config, unseen_counts)?;
+            // Per shape only: the views combine shape by shape.
             reports.push(ViewReport {
-                report,
+                shapes: shape_clearances(envelope, shapes, &config, unseen_counts),
                 allowance: self.allowance(h, now_ns),
             });
         }
