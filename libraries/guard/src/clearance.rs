@@ -168,6 +168,10 @@ impl Envelope {
             let Some((a, b)) = self.span(0, u[0] - du, u[1] + du) else {
                 continue;
             };
+            // `span` orders its ends; an empty span is skipped, not an underflow.
+            if a > b {
+                continue;
+            }
             let first = g * cells_s + a;
             for (index, cell) in (first..).zip(&boxes[first..first + (b - a) + 1]) {
                 if cell.is_empty() {

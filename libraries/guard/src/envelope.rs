@@ -528,7 +528,8 @@ fn cell_index(x: f64, cells: usize) -> usize {
     // and a cast to `i64` is one instruction there where a cast to `usize`
     // is a sequence (it saturates at `i64::MAX`, far above any cell count).
     if x >= 1.0 {
-        (x as i64 as usize).min(cells - 1)
+        // Clamped while still an `i64`, so that no target's `usize` can wrap.
+        (x as i64).min(cells as i64 - 1) as usize
     } else {
         0
     }

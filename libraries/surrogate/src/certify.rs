@@ -68,6 +68,10 @@ pub(crate) fn certify_sides(
     // without locating the whole cloud.
     tile_of.truncate(points.len());
     tile_of.resize(points.len(), 0);
+    // A much smaller cloud than the last gives the rest back.
+    if tile_of.capacity() > 2 * points.len() {
+        tile_of.shrink_to(points.len());
+    }
     let measured: Vec<Measured> = sides
         .iter()
         .map(|(side, surface)| Measured {

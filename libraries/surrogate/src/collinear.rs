@@ -114,6 +114,23 @@ mod tests {
         Frame::from_direction(DVec3::new(0.0, 0.0, -1.0)).unwrap()
     }
 
+    /// More extreme points than the sample holds: a line is still a line, and
+    /// one point off it that the sample skips is found by the full pass.
+    #[test]
+    fn a_sampled_line_is_collinear_unless_a_skipped_point_leaves_it() {
+        let mut line: Vec<[f32; 3]> = (0..10_000)
+            .map(|i| [0.001 * i as f32, 0.002 * i as f32, (i as f32).cos()])
+            .collect();
+        let all: Vec<u32> = (0..line.len() as u32).collect();
+        assert!(matches!(
+            ensure_not_collinear(&line, &frame(), &all),
+            Err(FitError::Collinear { .. })
+        ));
+        // Index 1 is not among every fifth candidate the sample takes.
+        line[1] = [0.5, -0.5, 0.0];
+        assert!(ensure_not_collinear(&line, &frame(), &all).is_ok());
+    }
+
     #[test]
     fn a_skew_line_is_collinear_and_a_thin_triangle_is_not() {
         let line: Vec<[f32; 3]> = (0..40)

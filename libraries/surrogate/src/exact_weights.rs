@@ -47,8 +47,10 @@ pub(crate) fn needs_division(u: f64) -> bool {
     u > 0.0 && u * u * u < SMALLEST_EXACT
 }
 
-/// `basis_weights(u)`, bit for bit, for every `u` in `[0, 1]`: the divisions
-/// are taken only where Markstein's step could be inexact.
+/// `basis_weights(u)`, bit for bit, for every `u` in `[0, 1]` but `-0.0` (whose
+/// last weight would come out `+0.0`; knot intervals never give it, as
+/// `s - floor(s)` is `+0.0` for `s = -0.0`): the divisions are taken only where
+/// Markstein's step could be inexact.
 #[inline(always)]
 pub(crate) fn exact_basis_weights(u: f64) -> [f64; 4] {
     if needs_division(u) {

@@ -44,13 +44,21 @@ pub struct SurrogateFitter {
 }
 
 /// The large scratch arrays of a fit: each point's tile during certification
-/// and each side's lowering matrix (about 2.8 MB at 300K points, 20 x 20).
-/// Kept by the fitter, a stream's fits write over the last frame's arrays
-/// instead of allocating and clearing new ones.
-#[derive(Clone, Default)]
+/// (2 bytes a point) and each side's lowering matrix (24 bytes a matrix entry,
+/// about 16 per candidate). Kept by the fitter, a stream's fits write over the
+/// last frame's arrays instead of allocating and clearing new ones; they are
+/// given back when a frame needs less than half of them, and a clone of the
+/// fitter starts without them.
+#[derive(Default)]
 struct FitBuffers {
     tile_of: Vec<u16>,
     lowering: [LoweringBuffers; 2],
+}
+
+impl Clone for FitBuffers {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
 }
 
 impl std::fmt::Debug for FitBuffers {

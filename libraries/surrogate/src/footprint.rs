@@ -219,8 +219,9 @@ mod tests {
         assert_eq!(domain.u_step, (u_max - u_min) / 10.0);
     }
 
-    /// Frames whose axes are world axes take the f32 path; their domains are
-    /// the general path's, bit for bit, zeros of either sign included.
+    /// Frames whose axes are world axes take the f32 path; their bounds are
+    /// the general path's, but for the sign of a zero bound (which the domain
+    /// normalises), on clouds with zeros of both signs.
     #[test]
     fn world_axis_frames_give_the_general_domain() {
         let mut points: Vec<[f32; 3]> = (0..5003)

@@ -14,6 +14,7 @@
 
 use super::candidates::Candidate;
 use super::trim::TrimMask;
+use crate::bins::MAX_SUB_CELLS;
 use crate::exact_weights::exact_basis_weights;
 use shroud_geometry::spline::{basis_weights, knot_interval, UniformCubicSurface};
 
@@ -41,10 +42,17 @@ pub fn lower_onto_candidates(
 /// next: a stream's matrices have about the same size, so a warm fit writes
 /// its matrix over the last one instead of allocating and clearing a new one
 /// (about 2 MB at 300K points, 20 x 20).
-#[derive(Clone, Default)]
+#[derive(Default)]
 pub(crate) struct LoweringBuffers {
     start: Vec<usize>,
     entries: Vec<Entry>,
+}
+
+/// A copy starts with empty storage: what a buffer holds never changes a result.
+impl Clone for LoweringBuffers {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
 }
 
 impl std::fmt::Debug for LoweringBuffers {
@@ -54,6 +62,8 @@ impl std::fmt::Debug for LoweringBuffers {
 }
 
 /// [`lower_onto_candidates`] in `buffers`, which it leaves holding this matrix.
+/// `sub` is clamped to `1..=MAX_SUB_CELLS` (the reciprocal table grows as its
+/// square); fewer, larger sub-cells only make the moves more cautious.
 pub(crate) fn lower_reusing(
     buffers: &mut LoweringBuffers,
     surface: &mut UniformCubicSurface,
@@ -63,7 +73,8 @@ pub(crate) fn lower_reusing(
     sweeps: usize,
 ) -> u64 {
     let storage = std::mem::take(buffers);
-    let mut lowering = Lowering::new(storage, surface, candidates, trim, sub.max(1));
+    let sub = sub.clamp(1, MAX_SUB_CELLS);
+    let mut lowering = Lowering::new(storage, surface, candidates, trim, sub);
     let moves = lowering.descend(surface, sweeps);
     *buffers = lowering.into_buffers();
     moves
@@ -187,8 +198,13 @@ impl Lowering {
             weight: 0.0,
             inverse_bound: 0.0,
         };
-        entries.truncate(start[cols * rows]);
-        entries.resize(start[cols * rows], blank);
+        let total = start[cols * rows];
+        entries.truncate(total);
+        entries.resize(total, blank);
+        // A much smaller matrix than the last gives the rest back.
+        if entries.capacity() > 2 * total {
+            entries.shrink_to(total);
+        }
         let mut gap = Vec::with_capacity(candidates.len());
         let mut lowest = vec![f64::INFINITY; (cols - 1) * (rows - 1)];
         let mut next = start.clone();
