@@ -10,7 +10,8 @@
 
 use glam::{DMat4, DVec3, DVec4};
 
-/// `|a - b|^3`, the kernel of Eq. 1.
+/// `|a - b|^3`, the kernel of Eq. 1; the dense solve's matrix uses it too, so
+/// the grown factor and its fallback see the same entries.
 #[inline(always)]
 pub(super) fn cube(a: DVec3, b: DVec3) -> f64 {
     let s = a.distance_squared(b);

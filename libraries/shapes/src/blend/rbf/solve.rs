@@ -4,6 +4,7 @@
 //! checked by its residual: a singular system is an error, never garbage.
 
 use super::eval::Rbf;
+use super::projection::cube;
 use crate::blend::error::BlendError;
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
@@ -93,7 +94,7 @@ pub(super) fn check_distinct(local: &[DVec3]) -> Result<(), BlendError> {
 fn entry(local: &[DVec3], i: usize, j: usize) -> f64 {
     let n = local.len();
     match (i < n, j < n) {
-        (true, true) => local[i].distance(local[j]).powi(3),
+        (true, true) => cube(local[i], local[j]),
         (true, false) => poly_term(local[i], j - n),
         (false, true) => poly_term(local[j], i - n),
         (false, false) => 0.0,
